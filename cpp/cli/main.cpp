@@ -1,0 +1,64 @@
+// plunge-rough: the command-line face of the planner (../shared/CONTRACTS.md section 4).
+// Exit 0 on success; on bad input exit 2 with one line on stderr.
+#include <CLI/CLI.hpp>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "plunge/error.hpp"
+#include "plunge/io.hpp"
+#include "plunge/plan.hpp"
+
+namespace {
+
+std::string readFile(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw plunge::Error("cannot read " + path);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+void writeFile(const std::string& path, const std::string& text) {
+  if (path == "-") {
+    std::cout << text;
+    return;
+  }
+  std::ofstream f(path, std::ios::binary);
+  if (!f || !(f << text)) throw plunge::Error("cannot write " + path);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Plunge roughing planner: plunge positions, order and depths for a pocket"};
+  app.require_subcommand(1);
+  std::string input, output = "-", svg, gcode;
+  CLI::App* planCmd = app.add_subcommand("plan", "Plan the plunges of a pocket described in a JSON file");
+  planCmd->add_option("INPUT", input, "plan input (JSON, see CONTRACTS.md section 1)")->required();
+  planCmd->add_option("-o,--output", output, "plan output JSON (default: standard output)");
+  planCmd->add_option("--svg", svg, "write a picture of the plan");
+  planCmd->add_option("--gcode", gcode, "write RS-274 G-code (explicit moves)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "plunge-rough: error: " << e.what() << " (see --help)\n";
+    return 2;
+  }
+  try {
+    plunge::PlanInput in = plunge::planInputFromJson(readFile(input));
+    const plunge::Plan plan = plunge::plan(in);
+    writeFile(output, plunge::planToJson(plan));
+    if (!svg.empty()) writeFile(svg, plunge::planToSvg(in, plan));
+    if (!gcode.empty()) writeFile(gcode, plunge::planToGcode(in, plan));
+  } catch (const plunge::Error& e) {
+    std::cerr << "plunge-rough: error: " << input << ": " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "plunge-rough: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,19 @@
+// Plan input and output (../shared/CONTRACTS.md sections 1, 2 and 4): JSON text,
+// an SVG picture of the plan, and plain RS-274 G-code.
+#pragma once
+#include <string>
+
+#include "plunge/plan.hpp"
+
+namespace plunge {
+
+// Parses and checks the JSON input; throws plunge::Error naming the bad field.
+PlanInput planInputFromJson(const std::string& text);
+std::string planToJson(const Plan& plan);
+// The pocket, its islands, every plunge disk coloured by tool, the tool paths,
+// what is left uncovered (red) and a legend (tool, count, coverage, travel).
+std::string planToSvg(const PlanInput& input, const Plan& plan);
+// Explicit moves: tool change, rapid to safe_z, G1 plunge at the tool's feed, rapid back.
+std::string planToGcode(const PlanInput& input, const Plan& plan);
+
+}  // namespace plunge

@@ -1,0 +1,84 @@
+// The plan pipeline: input (../shared/CONTRACTS.md section 1) to plunges and
+// statistics (section 2): region, packing, covering, sequencing, depths.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "plunge/geometry.hpp"
+#include "plunge/region.hpp"
+
+namespace plunge {
+
+struct Tool {
+  double diameter = 0.0;
+  int id = 0;             // tool number in G-code
+  double feed = 200.0;    // plunge feed, mm/min
+};
+
+struct Floor {
+  enum class Kind { Flat, Expression, Brep } kind = Kind::Flat;
+  double z = 0.0;
+  std::string expression;
+  std::string brep;
+};
+
+struct PlanInput {
+  Loop boundary;
+  std::vector<Loop> islands;
+  std::vector<Tool> tools;  // sorted by decreasing diameter once validated
+  double topZ = 0.0;
+  double safeZ = 5.0;
+  Floor floor;
+  double radialAllowance = 0.0;
+  double floorAllowance = 0.0;
+  std::string strategy = "packing";
+  std::uint64_t seed = 0;
+  // Extensions beyond the contract (all optional in JSON):
+  double minCoverage = 0.996;  // "min_coverage": stop covering wall material here
+  double contactRatio = 0.86;  // "contact_ratio": packing tangency radius / tool radius
+  std::optional<Vec2> start;   // "start": where the machine starts (default: first boundary point)
+};
+
+struct Plunge {
+  double x = 0.0, y = 0.0;
+  double diameter = 0.0;
+  int toolId = 0;
+  double z = 0.0;
+};
+
+struct ToolCount {
+  int toolId = 0;
+  double diameter = 0.0;
+  int count = 0;
+};
+
+struct PlanStats {
+  int plungeCount = 0;
+  std::vector<ToolCount> perTool;
+  double regionArea = 0.0;      // pocket after the radial allowance
+  double accessibleArea = 0.0;  // the part of it the smallest tool reaches
+  double coveredArea = 0.0;
+  double coverage = 0.0;
+  double travelLength = 0.0;
+  double planningSeconds = 0.0;
+  // Reference: plunges of the largest tool a hexagonal covering of the
+  // accessible area would need (area / (2.598 r^2)), see shared notes.
+  double hexReferenceCount = 0.0;
+};
+
+struct Plan {
+  std::vector<Plunge> plunges;  // execution order: tools largest first
+  PlanStats stats;
+  // For drawing: the accessible region and what the plunges leave uncovered.
+  Polygons accessible;
+  Polygons uncovered;
+};
+
+// Checks every number and option of the input; throws plunge::Error naming the problem.
+void validate(PlanInput& input);
+
+Plan plan(PlanInput input);
+
+}  // namespace plunge

@@ -1,0 +1,73 @@
+// The pocket region: an outer wall loop with island loops, validated and oriented
+// so that the material to remove is on the left of every wall segment.
+// Exact (double precision) queries used by packing and covering to guarantee
+// that no plunge gouges a wall: distance to the walls and point containment,
+// both accelerated by a Boost.Geometry R-tree of the wall segments.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "plunge/geometry.hpp"
+
+namespace plunge {
+
+using Polygons = std::vector<Loop>;
+
+class Region {
+ public:
+  struct Vertex {
+    Vec2 p;
+    int prevWall;  // wall ending at this vertex
+    int nextWall;  // wall starting at this vertex
+    bool reflex;   // interior angle above 180 degrees: a disk can touch the vertex itself
+  };
+
+  // Validates the loops (either orientation) and throws plunge::Error naming the
+  // problem: too few distinct points, non-finite coordinates, zero area,
+  // self-intersection, islands crossing or outside the boundary, islands overlapping.
+  Region(const Loop& boundary, const std::vector<Loop>& islands);
+  ~Region();
+  Region(Region&&) noexcept;
+  Region& operator=(Region&&) noexcept;
+
+  // loops()[0] is the boundary (counter-clockwise), the rest the islands (clockwise).
+  const std::vector<Loop>& loops() const { return loops_; }
+  const std::vector<Segment>& walls() const { return walls_; }
+  const std::vector<Vertex>& vertices() const { return vertices_; }
+  // Loop index of a wall.
+  int wallLoop(int wall) const { return wallLoop_[wall]; }
+  double area() const;
+  Polygons polygons() const { return loops_; }
+
+  // Point strictly inside the region (ray casting; points on a wall are ambiguous).
+  bool contains(Vec2 p) const;
+  // Distance from p to the nearest wall; exact when it is at most `within`,
+  // otherwise some value above `within`.
+  double wallDistance(Vec2 p, double within) const;
+  // Nearest wall point to p among walls within `within` (returns false if none).
+  bool nearestWallPoint(Vec2 p, double within, Vec2& point, double& distance, int* wall = nullptr) const;
+  // A disk of radius `clearance` at c lies inside the region (walls at least
+  // clearance - tol away, centre inside).
+  bool diskFits(Vec2 c, double clearance, double tol = 1e-9) const;
+  // Walls whose bounding box meets the square of half-size `radius` around p.
+  std::vector<int> wallsNear(Vec2 p, double radius) const;
+  // Walls whose bounding box meets the box [lo, hi].
+  std::vector<int> wallsInBox(Vec2 lo, Vec2 hi) const;
+  // Reflex vertices whose position lies in the square of half-size radius around p.
+  std::vector<int> reflexVerticesNear(Vec2 p, double radius) const;
+  // Axis-aligned bounds of the boundary: min and max corners.
+  Vec2 minCorner() const { return lo_; }
+  Vec2 maxCorner() const { return hi_; }
+
+ private:
+  struct Index;
+  std::vector<Loop> loops_;
+  std::vector<Segment> walls_;
+  std::vector<int> wallLoop_;
+  std::vector<size_t> loopFirst_;
+  std::vector<Vertex> vertices_;
+  Vec2 lo_, hi_;
+  std::unique_ptr<Index> index_;
+};
+
+}  // namespace plunge

@@ -1,0 +1,537 @@
+#include "plunge/covering.hpp"
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <queue>
+#include <chrono>
+#include <cstdio>
+
+#include "clip.hpp"
+#include "plunge/error.hpp"
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+
+namespace plunge {
+
+namespace {
+
+// Disks become polygons with this chord error. The coverage that is reported
+// uses inscribed polygons (never overestimated); planning uses circumscribed
+// ones, so that a disk touching a wall splits the material on either side
+// instead of leaving a sliver that joins every cusp along the wall.
+constexpr double kDiskChord = 0.005;
+constexpr double kTol = 1e-9;
+
+using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
+using BBox = bg::model::box<BPoint>;
+using BoxValue = std::pair<BBox, int>;
+
+BBox boxOf(Vec2 lo, Vec2 hi) { return BBox(BPoint(lo.x, lo.y), BPoint(hi.x, hi.y)); }
+
+clip::Paths diskPaths(const std::vector<Circle>& disks, bool circumscribed) {
+  clip::Paths out;
+  out.reserve(disks.size());
+  for (const Circle& c : disks) out.push_back(clip::diskPath(c, kDiskChord, circumscribed));
+  return out;
+}
+
+std::vector<Vec2> verticesOf(const clip::Paths& p) {
+  std::vector<Vec2> out;
+  for (const clip::Path& q : p)
+    for (const clip::IntPoint& v : q) out.push_back(clip::toMm(v));
+  return out;
+}
+
+// A point inside a polygon set: the middle of the widest inside span of a
+// horizontal line through the middle of its bounding box.
+Vec2 interiorPoint(const clip::Paths& p) {
+  Vec2 lo, hi;
+  clip::bounds(p, lo, hi);
+  const double y = lo.y + (hi.y - lo.y) * 0.5000123;  // off any vertex in practice
+  std::vector<double> xs;
+  for (const clip::Path& q : p)
+    for (size_t i = 0, j = q.size() - 1; i < q.size(); j = i++) {
+      const Vec2 a = clip::toMm(q[j]), b = clip::toMm(q[i]);
+      if ((a.y > y) != (b.y > y)) xs.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+    }
+  std::sort(xs.begin(), xs.end());
+  Vec2 best{(lo.x + hi.x) * 0.5, y};
+  double width = -1.0;
+  for (size_t i = 0; i + 1 < xs.size(); i += 2)
+    if (xs[i + 1] - xs[i] > width) {
+      width = xs[i + 1] - xs[i];
+      best = {(xs[i] + xs[i + 1]) * 0.5, y};
+    }
+  return best;
+}
+
+bool inTriangle(Vec2 p, Vec2 a, Vec2 b, Vec2 c) {
+  const double d1 = cross(b - a, p - a), d2 = cross(c - b, p - b), d3 = cross(a - c, p - c);
+  const bool neg = d1 < 0 || d2 < 0 || d3 < 0, pos = d1 > 0 || d2 > 0 || d3 > 0;
+  return !(neg && pos);
+}
+
+// The components of p on either side of a cut through `at` across p's longer side.
+std::vector<clip::Paths> splitInHalves(const clip::Paths& p, Vec2 at) {
+  Vec2 lo, hi;
+  clip::bounds(p, lo, hi);
+  lo = lo - Vec2{1, 1};
+  hi = hi + Vec2{1, 1};
+  auto rect = [](Vec2 l, Vec2 h) {
+    return clip::Path{clip::toInt(l), clip::toInt({h.x, l.y}), clip::toInt(h), clip::toInt({l.x, h.y})};
+  };
+  const bool cutX = (hi.x - lo.x) >= (hi.y - lo.y);
+  const clip::Path h1 = cutX ? rect(lo, {at.x, hi.y}) : rect(lo, {hi.x, at.y});
+  const clip::Path h2 = cutX ? rect({at.x, lo.y}, hi) : rect({lo.x, at.y}, hi);
+  std::vector<clip::Paths> out;
+  for (const clip::Path& h : {h1, h2})
+    for (clip::Paths& part : clip::components(clip::boolean(p, {h}, ClipperLib::ctIntersection)))
+      out.push_back(std::move(part));
+  return out;
+}
+
+struct UnionFind {
+  std::vector<int> parent;
+  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+}  // namespace
+
+Polygons allowedRegion(const Region& region, double allowance) {
+  if (allowance <= 0.0) return poly::unite(region.polygons());
+  return poly::offset(region.polygons(), -allowance);
+}
+
+Polygons accessibleRegion(const Region& region, double minRadius, double allowance) {
+  // Opening: erode by the tool (and allowance), dilate by the tool again.
+  const clip::Paths eroded = clip::offset(clip::toPaths(region.polygons()), -(minRadius + allowance));
+  if (eroded.empty()) return {};
+  return clip::toPolygons(clip::offset(eroded, minRadius));
+}
+
+Polygons uncoveredRegion(const Polygons& area, const std::vector<Circle>& disks) {
+  return clip::toPolygons(clip::boolean(clip::toPaths(area), diskPaths(disks, false), ClipperLib::ctDifference));
+}
+
+DelaunayGaps delaunayGaps(const std::vector<PackedDisk>& packed) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
+  using Tds = CGAL::Triangulation_data_structure_2<Vb>;
+  using DT = CGAL::Delaunay_triangulation_2<K, Tds>;
+  DelaunayGaps out;
+  if (packed.size() < 3) return out;
+  std::vector<std::pair<K::Point_2, int>> pts;
+  for (size_t i = 0; i < packed.size(); ++i)
+    pts.emplace_back(K::Point_2(packed[i].center.x, packed[i].center.y), static_cast<int>(i));
+  DT dt(pts.begin(), pts.end());
+  if (dt.dimension() < 2) return out;
+
+  auto touching = [&](int a, int b) {
+    return dist(packed[a].center, packed[b].center) <=
+           packed[a].contactRadius + packed[b].contactRadius + 1e-6;
+  };
+  std::map<DT::Face_handle, int> id;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    GapTriangle t;
+    for (int i = 0; i < 3; ++i) t.v[i] = f->vertex(i)->info();
+    // Thesis fig. 4.17: closed when L = R1 + R2 on every edge.
+    t.closed = touching(t.v[0], t.v[1]) && touching(t.v[1], t.v[2]) && touching(t.v[2], t.v[0]);
+    id[f] = static_cast<int>(out.triangles.size());
+    out.triangles.push_back(t);
+  }
+  // Merge open triangles across their shared open edges (fig. 4.18).
+  UnionFind uf(static_cast<int>(out.triangles.size()));
+  for (const auto& [f, i] : id) {
+    if (out.triangles[i].closed) continue;
+    for (int e = 0; e < 3; ++e) {
+      const auto g = f->neighbor(e);
+      if (dt.is_infinite(g)) continue;
+      const int j = id.at(g);
+      if (out.triangles[j].closed) continue;
+      if (!touching(f->vertex(DT::cw(e))->info(), f->vertex(DT::ccw(e))->info())) uf.unite(i, j);
+    }
+  }
+  std::map<int, int> groupOf;
+  for (size_t i = 0; i < out.triangles.size(); ++i) {
+    const int root = uf.find(static_cast<int>(i));
+    auto it = groupOf.find(root);
+    if (it == groupOf.end()) {
+      it = groupOf.emplace(root, static_cast<int>(out.groups.size())).first;
+      out.groups.emplace_back();
+    }
+    out.groups[it->second].push_back(static_cast<int>(i));
+  }
+  return out;
+}
+
+namespace {
+
+class Coverer {
+ public:
+  Coverer(const Region& region, const std::vector<double>& radii, const CoveringOptions& opt)
+      : region_(region), radii_(radii), opt_(opt) {
+    sorted_.resize(radii.size());
+    std::iota(sorted_.begin(), sorted_.end(), 0);
+    std::stable_sort(sorted_.begin(), sorted_.end(), [&](int a, int b) { return radii[a] < radii[b]; });
+    rMin_ = radii[sorted_.front()];
+    rMax_ = radii[sorted_.back()];
+    crumb_ = 0.01 * rMin_ * rMin_;
+  }
+
+  CoverResult run(const std::vector<PackedDisk>& packed) {
+    const Polygons acc = accessibleRegion(region_, rMin_, opt_.allowance);
+    accessible_ = clip::toPaths(acc);
+    result_.accessibleArea = clip::area(accessible_);
+    buildBoundaryIndex();
+
+    std::vector<Circle> circles;
+    for (const PackedDisk& d : packed) {
+      result_.disks.push_back({d.center, d.radius, d.tool, Stage::Packing});
+      circles.push_back({d.center, d.radius});
+    }
+    const clip::Paths left = clip::boolean(accessible_, diskPaths(circles, true), ClipperLib::ctDifference);
+    for (clip::Paths& c : clip::components(left)) addPiece(std::move(c));
+
+    auto T = [](){ return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); };
+    double t0 = T();
+    coverDelaunayGaps(packed);
+    double t1 = T();
+    generating_ = true;
+    for (size_t i = 0; i < pieces_.size(); ++i)
+      if (pieces_[i].alive) generateCandidates(static_cast<int>(i));
+    double t2 = T();
+    // The greedy counts with circumscribed disks; the measurement is conservative.
+    // Where the two disagree about the target, cover a little more.
+    double target = opt_.minCoverage * result_.accessibleArea;
+    for (int round = 0;; ++round) {
+      coverResidual(target);
+      std::vector<Circle> all;
+      for (const CoverDisk& d : result_.disks) all.push_back({d.center, d.radius});
+      result_.uncovered = uncoveredRegion(acc, all);
+      result_.coveredArea = result_.accessibleArea - poly::area(result_.uncovered);
+      const double shortBy = opt_.minCoverage * result_.accessibleArea - result_.coveredArea;
+      if (shortBy <= 0.0 || round == 4) break;
+      target += shortBy + 1e-4 * result_.accessibleArea;
+    }
+    double t3 = T();
+    int cnt[3][8] = {};
+    for (const CoverDisk& d : result_.disks) cnt[int(d.stage)][d.tool]++;
+    for (int st = 0; st < 3; ++st) fprintf(stderr, "TRACE stage %d: %d %d %d\n", st, cnt[st][0], cnt[st][1], cnt[st][2]);
+    fprintf(stderr, "TRACE gaps %.3f gen %.3f residual %.3f disks %zu gains %d\n", t1-t0, t2-t1, t3-t2, result_.disks.size(), gains_);
+    return std::move(result_);
+  }
+
+ private:
+  struct Piece {
+    clip::Paths poly;
+    Vec2 lo, hi;
+    double area;
+    bool pin;  // touches no edge of the accessible region: a free-standing core of material
+    bool alive;
+  };
+  struct Candidate {
+    double gain;
+    int seq;
+    Vec2 c;
+    int tool;
+    int piece;
+    bool operator<(const Candidate& o) const { return gain < o.gain || (gain == o.gain && seq > o.seq); }
+  };
+
+  // --- uncovered material -------------------------------------------------
+
+  void buildBoundaryIndex() {
+    std::vector<BoxValue> boxes;
+    for (const clip::Path& q : accessible_)
+      for (size_t i = 0, j = q.size() - 1; i < q.size(); j = i++) {
+        const Vec2 a = clip::toMm(q[j]), b = clip::toMm(q[i]);
+        boundary_.push_back({a, b});
+        boxes.emplace_back(boxOf({std::min(a.x, b.x), std::min(a.y, b.y)}, {std::max(a.x, b.x), std::max(a.y, b.y)}),
+                           static_cast<int>(boundary_.size() - 1));
+      }
+    boundaryIndex_ = decltype(boundaryIndex_)(boxes.begin(), boxes.end());
+  }
+
+  bool touchesBoundary(const clip::Paths& p) const {
+    constexpr double tol = 3.0 / poly::kScale;
+    for (const clip::Path& q : p)
+      for (const clip::IntPoint& v : q) {
+        const Vec2 m = clip::toMm(v);
+        const BBox b = boxOf({m.x - tol, m.y - tol}, {m.x + tol, m.y + tol});
+        for (auto it = boundaryIndex_.qbegin(bgi::intersects(b)); it != boundaryIndex_.qend(); ++it)
+          if (distanceToSegment(boundary_[it->second], m) <= tol) return true;
+      }
+    return false;
+  }
+
+  void addPiece(clip::Paths poly) {
+    Piece p;
+    p.area = clip::area(poly);
+    if (p.area <= 0.0) return;
+    clip::bounds(poly, p.lo, p.hi);
+    p.pin = !touchesBoundary(poly);
+    p.alive = true;
+    p.poly = std::move(poly);
+    uncovered_ += p.area;
+    const int id = static_cast<int>(pieces_.size());
+    pieceIndex_.insert({boxOf(p.lo, p.hi), id});
+    pieces_.push_back(std::move(p));
+    if (pieces_.back().pin && pieces_.back().area >= crumb_) ++pins_;
+    if (generating_) generateCandidates(id);
+  }
+
+  void killPiece(int id) {
+    Piece& p = pieces_[id];
+    p.alive = false;
+    uncovered_ -= p.area;
+    if (p.pin && p.area >= crumb_) --pins_;
+    pieceIndex_.remove({boxOf(p.lo, p.hi), id});
+  }
+
+  std::vector<int> piecesNear(Vec2 lo, Vec2 hi) const {
+    std::vector<int> out;
+    for (auto it = pieceIndex_.qbegin(bgi::intersects(boxOf(lo, hi))); it != pieceIndex_.qend(); ++it)
+      out.push_back(it->second);
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+  void addDisk(Vec2 c, int tool, Stage stage) {
+    const double r = radii_[tool];
+    result_.disks.push_back({c, r, tool, stage});
+    const clip::Paths disk{clip::diskPath({c, r}, kDiskChord, true)};
+    for (int id : piecesNear({c.x - r, c.y - r}, {c.x + r, c.y + r})) {
+      clip::Paths rest = clip::boolean(pieces_[id].poly, disk, ClipperLib::ctDifference);
+      killPiece(id);
+      for (clip::Paths& part : clip::components(rest)) addPiece(std::move(part));
+    }
+  }
+
+  mutable int gains_ = 0;
+  double gainOf(Vec2 c, double r) const {
+    ++gains_;
+    const clip::Paths disk{clip::diskPath({c, r}, kDiskChord, true)};
+    double g = 0.0;
+    for (int id : piecesNear({c.x - r, c.y - r}, {c.x + r, c.y + r}))
+      g += clip::area(clip::boolean(pieces_[id].poly, disk, ClipperLib::ctIntersection));
+    return g;
+  }
+
+  // --- feasible centres ---------------------------------------------------
+
+  // A centre near `a` where a plunge of radius r gouges nothing: pushed out of
+  // the walls it is too close to; in a corner, the corner placement itself.
+  bool feasibleNear(Vec2 a, double r, Vec2& out) const {
+    const double c = r + opt_.allowance;
+    Vec2 x = a;
+    if (!region_.contains(x)) {
+      Vec2 w;
+      double d;
+      int wall;
+      if (!region_.nearestWallPoint(x, 4 * rMax_ + c, w, d, &wall)) return false;
+      const Segment& s = region_.walls()[wall];
+      x = w + leftNormal(s.b - s.a) * ((c + 1e-7) / norm(s.b - s.a));
+    }
+    for (int iter = 0; iter < 12; ++iter) {
+      Vec2 w;
+      double d;
+      if (!region_.nearestWallPoint(x, c, w, d) || d >= c - kTol) {
+        if (region_.diskFits(x, c)) {
+          out = x;
+          return true;
+        }
+        return false;
+      }
+      if (d < 1e-12) return false;
+      x = w + (x - w) * ((c + 1e-7) / d);
+    }
+    // Still squeezed between walls: try the corner placements of the walls in reach.
+    const std::vector<int> near = region_.wallsNear(x, c);
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < near.size(); ++i)
+      for (size_t j = i + 1; j < near.size(); ++j)
+        for (const Vec2& p : cornerPlacementsWallWall(region_.walls()[near[i]], region_.walls()[near[j]], c))
+          if (dist(p, a) < best && region_.diskFits(p, c)) {
+            best = dist(p, a);
+            out = p;
+          }
+    return std::isfinite(best);
+  }
+
+  // --- 4.2.3: Delaunay gap covering ---------------------------------------
+
+  void coverDelaunayGaps(const std::vector<PackedDisk>& packed) {
+    const DelaunayGaps gaps = delaunayGaps(packed);
+    if (gaps.triangles.empty()) return;
+    std::vector<int> groupOfTri(gaps.triangles.size());
+    for (size_t g = 0; g < gaps.groups.size(); ++g)
+      for (int t : gaps.groups[g]) groupOfTri[t] = static_cast<int>(g);
+    std::vector<BoxValue> boxes;
+    for (size_t t = 0; t < gaps.triangles.size(); ++t) {
+      Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
+      for (int v : gaps.triangles[t].v) {
+        const Vec2 p = packed[v].center;
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+      }
+      boxes.emplace_back(boxOf(lo, hi), static_cast<int>(t));
+    }
+    bgi::rtree<BoxValue, bgi::rstar<16>> triIndex(boxes.begin(), boxes.end());
+
+    // Gaps that hold uncovered material: locate a point of every uncovered piece.
+    std::vector<int> groups;
+    for (const Piece& p : pieces_) {
+      if (!p.alive || p.area < crumb_) continue;
+      const Vec2 q = interiorPoint(p.poly);
+      for (auto it = triIndex.qbegin(bgi::intersects(BPoint(q.x, q.y))); it != triIndex.qend(); ++it) {
+        const GapTriangle& t = gaps.triangles[it->second];
+        if (inTriangle(q, packed[t.v[0]].center, packed[t.v[1]].center, packed[t.v[2]].center)) {
+          groups.push_back(groupOfTri[it->second]);
+          break;
+        }
+      }
+    }
+    std::sort(groups.begin(), groups.end());
+    groups.erase(std::unique(groups.begin(), groups.end()), groups.end());
+
+    for (int g : groups) {
+      clip::Paths tris;
+      for (int t : gaps.groups[g]) {
+        clip::Path tri;
+        for (int v : gaps.triangles[t].v) tri.push_back(clip::toInt(packed[v].center));
+        if (ClipperLib::Area(tri) < 0) std::reverse(tri.begin(), tri.end());
+        tris.push_back(tri);
+      }
+      const clip::Paths gapPoly = clip::boolean(tris, {}, ClipperLib::ctUnion);
+      Vec2 lo, hi;
+      clip::bounds(gapPoly, lo, hi);
+      clip::Paths material;
+      for (int id : piecesNear(lo, hi))
+        for (const clip::Path& q : pieces_[id].poly) material.push_back(q);
+      const clip::Paths gap = clip::boolean(material, gapPoly, ClipperLib::ctIntersection);
+      for (clip::Paths& part : clip::components(gap)) encloseGap(part, 0);
+    }
+  }
+
+  // Enclosing circle (4.2.3.2) readjusted to the next larger tool, split in two
+  // when larger than the largest tool. Pieces whose enclosing plunge would gouge
+  // are left to the residual covering.
+  void encloseGap(const clip::Paths& gap, int depth) {
+    if (clip::area(gap) < crumb_) return;
+    const Circle mec = minEnclosingCircle(verticesOf(gap));
+    if (mec.r <= rMax_) {
+      for (int t : sorted_)
+        if (radii_[t] >= mec.r && region_.diskFits(mec.c, radii_[t] + opt_.allowance)) {
+          addDisk(mec.c, t, Stage::Gap);
+          return;
+        }
+      return;
+    }
+    if (depth >= 8) return;
+    for (const clip::Paths& part : splitInHalves(gap, mec.c)) encloseGap(part, depth + 1);
+  }
+
+  // --- residual covering ---------------------------------------------------
+
+  void anchorsOf(const clip::Paths& p, int depth, std::vector<Vec2>& out) const {
+    const Circle mec = minEnclosingCircle(verticesOf(p));
+    out.push_back(mec.c);
+    if (mec.r <= rMax_ || depth >= 6) return;
+    for (const clip::Paths& part : splitInHalves(p, mec.c))
+      if (clip::area(part) >= crumb_) anchorsOf(part, depth + 1, out);
+  }
+
+  void generateCandidates(int id) {
+    const Piece& p = pieces_[id];
+    if (p.area < crumb_) return;
+    std::vector<Vec2> anchors;
+    anchorsOf(p.poly, 0, anchors);
+    for (const Vec2& a : anchors)
+      for (int t : sorted_) {
+        Vec2 c;
+        if (!feasibleNear(a, radii_[t], c)) continue;
+        // Lazy greedy: queue an upper bound of the gain, evaluate it when it comes up.
+        const double r = radii_[t];
+        double bound = 0.0;
+        for (int o : piecesNear({c.x - r, c.y - r}, {c.x + r, c.y + r})) bound += pieces_[o].area;
+        bound = std::min(bound, M_PI * r * r);
+        if (bound < 0.5 * crumb_) continue;
+        (p.pin ? pinQueue_ : wallQueue_).push({bound, seq_++, c, t, id});
+      }
+  }
+
+  void coverResidual(double target) {
+    for (int guard = 0; guard < 1000000; ++guard) {
+      const bool pinMode = pins_ > 0;
+      if (!pinMode && result_.accessibleArea - uncovered_ >= target) break;
+      auto& q = pinMode ? pinQueue_ : wallQueue_;
+      if (q.empty()) {
+        if (!pinMode) break;
+        // Pins no plunge can reach (slivers of the polygon approximation): give up on them.
+        for (Piece& p : pieces_)
+          if (p.alive && p.pin && p.area >= crumb_) p.pin = false;
+        pins_ = 0;
+        continue;
+      }
+      Candidate c = q.top();
+      q.pop();
+      if (!pieces_[c.piece].alive) continue;  // its piece changed: fresh candidates exist
+      const double g = gainOf(c.c, radii_[c.tool]);
+      if (g < 0.5 * crumb_) continue;
+      if (!q.empty() && g < q.top().gain) {  // stale: re-queue with its true gain (lazy greedy)
+        c.gain = g;
+        q.push(c);
+        continue;
+      }
+      addDisk(c.c, c.tool, Stage::Residual);
+    }
+  }
+
+  const Region& region_;
+  std::vector<double> radii_;
+  CoveringOptions opt_;
+  std::vector<int> sorted_;  // tool indices by increasing radius
+  double rMin_ = 0, rMax_ = 0, crumb_ = 0;
+  clip::Paths accessible_;
+  std::vector<Segment> boundary_;
+  bgi::rtree<BoxValue, bgi::rstar<16>> boundaryIndex_;
+  std::vector<Piece> pieces_;
+  bgi::rtree<BoxValue, bgi::rstar<16>> pieceIndex_;
+  double uncovered_ = 0.0;
+  int pins_ = 0;
+  bool generating_ = false;
+  int seq_ = 0;
+  std::priority_queue<Candidate> pinQueue_, wallQueue_;
+  CoverResult result_;
+};
+
+}  // namespace
+
+CoverResult coverRegion(const Region& region, const std::vector<double>& radii,
+                        const std::vector<PackedDisk>& packed, const CoveringOptions& options) {
+  if (radii.empty()) throw Error("no tools given");
+  if (!(options.minCoverage > 0.0 && options.minCoverage <= 1.0))
+    throw Error("minimum coverage must be in (0, 1]");
+  Coverer c(region, radii, options);
+  return c.run(packed);
+}
+
+}  // namespace plunge

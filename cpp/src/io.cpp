@@ -1,0 +1,258 @@
+#include "plunge/io.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "plunge/error.hpp"
+
+namespace plunge {
+
+using nlohmann::json;
+
+namespace {
+
+double number(const json& j, const std::string& what) {
+  if (!j.is_number()) throw Error(what + ": expected a number");
+  return j.get<double>();
+}
+
+Vec2 point(const json& j, const std::string& what) {
+  if (!j.is_array() || j.size() != 2) throw Error(what + ": expected a point [x, y]");
+  return {number(j[0], what + "[0]"), number(j[1], what + "[1]")};
+}
+
+Loop loop(const json& j, const std::string& what) {
+  if (!j.is_array()) throw Error(what + ": expected a list of [x, y] points");
+  Loop out;
+  for (size_t i = 0; i < j.size(); ++i) out.push_back(point(j[i], what + "[" + std::to_string(i) + "]"));
+  return out;
+}
+
+void onlyKeys(const json& j, const std::set<std::string>& allowed, const std::string& where) {
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (!allowed.count(it.key())) throw Error(where + "unknown key '" + it.key() + "'");
+}
+
+}  // namespace
+
+PlanInput planInputFromJson(const std::string& text) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    std::string msg = e.what();
+    throw Error("invalid JSON: " + msg.substr(msg.find(']') == std::string::npos ? 0 : msg.find(']') + 2));
+  }
+  if (!j.is_object()) throw Error("input: expected a JSON object");
+  onlyKeys(j,
+           {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",
+            "min_coverage", "contact_ratio", "start"},
+           "input: ");
+  PlanInput in;
+  if (j.contains("version") && !(j["version"].is_number_integer() && j["version"].get<long long>() == 1))
+    throw Error("version: only version 1 is supported");
+  if (!j.contains("boundary")) throw Error("boundary: required");
+  in.boundary = loop(j["boundary"], "boundary");
+  if (j.contains("islands")) {
+    const json& is = j["islands"];
+    if (!is.is_array()) throw Error("islands: expected a list of polylines");
+    for (size_t i = 0; i < is.size(); ++i) in.islands.push_back(loop(is[i], "islands[" + std::to_string(i) + "]"));
+  }
+  if (!j.contains("tools") || !j["tools"].is_array()) throw Error("tools: expected a list of {\"diameter\": ...}");
+  const json& ts = j["tools"];
+  for (size_t i = 0; i < ts.size(); ++i) {
+    const std::string name = "tools[" + std::to_string(i) + "]";
+    if (!ts[i].is_object()) throw Error(name + ": expected an object with a diameter");
+    onlyKeys(ts[i], {"diameter", "id", "feed"}, name + ": ");
+    if (!ts[i].contains("diameter")) throw Error(name + ".diameter: required");
+    Tool t;
+    t.diameter = number(ts[i]["diameter"], name + ".diameter");
+    t.id = -1;
+    if (ts[i].contains("id")) {
+      if (!ts[i]["id"].is_number_integer() || ts[i]["id"].get<long long>() <= 0 ||
+          ts[i]["id"].get<long long>() > 1000000)
+        throw Error(name + ".id: expected a positive integer");
+      t.id = ts[i]["id"].get<int>();
+    }
+    if (ts[i].contains("feed")) t.feed = number(ts[i]["feed"], name + ".feed");
+    in.tools.push_back(t);
+  }
+  // Default tool numbers: 1, 2, ... by decreasing diameter.
+  for (Tool& t : in.tools)
+    if (t.id < 0)
+      t.id = 1 + static_cast<int>(std::count_if(in.tools.begin(), in.tools.end(),
+                                                [&](const Tool& o) { return o.diameter > t.diameter; }));
+  if (j.contains("top_z")) in.topZ = number(j["top_z"], "top_z");
+  if (j.contains("safe_z")) in.safeZ = number(j["safe_z"], "safe_z");
+  if (!j.contains("floor") || !j["floor"].is_object()) throw Error("floor: required, e.g. {\"z\": -10}");
+  const json& f = j["floor"];
+  onlyKeys(f, {"z", "expression", "brep"}, "floor: ");
+  if (f.size() != 1) throw Error("floor: give exactly one of z, expression, brep");
+  if (f.contains("z")) {
+    in.floor.kind = Floor::Kind::Flat;
+    in.floor.z = number(f["z"], "floor.z");
+  } else if (f.contains("expression")) {
+    if (!f["expression"].is_string()) throw Error("floor.expression: expected a string");
+    in.floor.kind = Floor::Kind::Expression;
+    in.floor.expression = f["expression"].get<std::string>();
+  } else {
+    if (!f["brep"].is_string()) throw Error("floor.brep: expected a file name");
+    in.floor.kind = Floor::Kind::Brep;
+    in.floor.brep = f["brep"].get<std::string>();
+  }
+  if (j.contains("allowance")) {
+    const json& a = j["allowance"];
+    if (!a.is_object()) throw Error("allowance: expected {\"radial\": ..., \"floor\": ...}");
+    onlyKeys(a, {"radial", "floor"}, "allowance: ");
+    if (a.contains("radial")) in.radialAllowance = number(a["radial"], "allowance.radial");
+    if (a.contains("floor")) in.floorAllowance = number(a["floor"], "allowance.floor");
+  }
+  if (j.contains("strategy")) {
+    if (!j["strategy"].is_string()) throw Error("strategy: expected a string");
+    in.strategy = j["strategy"].get<std::string>();
+  }
+  if (j.contains("seed")) {
+    if (!j["seed"].is_number_integer() || j["seed"].get<long long>() < 0)
+      throw Error("seed: expected a non-negative integer");
+    in.seed = j["seed"].get<std::uint64_t>();
+  }
+  if (j.contains("min_coverage")) in.minCoverage = number(j["min_coverage"], "min_coverage");
+  if (j.contains("contact_ratio")) in.contactRatio = number(j["contact_ratio"], "contact_ratio");
+  if (j.contains("start")) in.start = point(j["start"], "start");
+  return in;
+}
+
+std::string planToJson(const Plan& plan) {
+  json out;
+  out["plunges"] = json::array();
+  for (const Plunge& p : plan.plunges)
+    out["plunges"].push_back({{"x", p.x}, {"y", p.y}, {"diameter", p.diameter}, {"tool_id", p.toolId}, {"z", p.z}});
+  const PlanStats& s = plan.stats;
+  json per = json::array();
+  for (const ToolCount& t : s.perTool) per.push_back({{"tool_id", t.toolId}, {"diameter", t.diameter}, {"count", t.count}});
+  out["stats"] = {{"plunge_count", s.plungeCount},
+                  {"per_tool", per},
+                  {"region_area", s.regionArea},
+                  {"accessible_area", s.accessibleArea},
+                  {"covered_area", s.coveredArea},
+                  {"coverage", s.coverage},
+                  {"travel_length", s.travelLength},
+                  {"planning_seconds", s.planningSeconds},
+                  {"hex_reference_count", s.hexReferenceCount}};
+  return out.dump(1) + "\n";
+}
+
+namespace {
+
+const char* kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22"};
+
+std::string pathData(const Polygons& loops) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(3);
+  for (const Loop& L : loops) {
+    for (size_t i = 0; i < L.size(); ++i) s << (i ? " L" : "M") << L[i].x << " " << -L[i].y;
+    s << " Z ";
+  }
+  return s.str();
+}
+
+}  // namespace
+
+std::string planToSvg(const PlanInput& input, const Plan& plan) {
+  Vec2 lo = input.boundary.front(), hi = lo;
+  for (const Vec2& p : input.boundary) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  const double w = hi.x - lo.x, h = hi.y - lo.y;
+  const double size = std::max(w, h);
+  const double margin = 0.04 * size;
+  const double sw = size / 900.0;  // stroke width
+  const double legendH = 0.05 * size * (2 + plan.stats.perTool.size());
+  const double vx = lo.x - margin, vy = -hi.y - margin - legendH, vw = w + 2 * margin, vh = h + 2 * margin + legendH;
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(3);
+  const double pxW = 1200.0, pxH = pxW * vh / vw;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << pxW << "\" height=\"" << pxH << "\" viewBox=\"" << vx
+    << " " << vy << " " << vw << " " << vh << "\">\n";
+  s << "<rect x=\"" << vx << "\" y=\"" << vy << "\" width=\"" << vw << "\" height=\"" << vh << "\" fill=\"white\"/>\n";
+  Polygons pocket{input.boundary};
+  for (const Loop& L : input.islands) pocket.push_back(L);
+  s << "<path d=\"" << pathData(pocket) << "\" fill=\"#e8e8e8\" fill-rule=\"evenodd\" stroke=\"#222\" stroke-width=\""
+    << 2 * sw << "\"/>\n";
+  for (const Loop& L : input.islands)
+    s << "<path d=\"" << pathData({L}) << "\" fill=\"#9a9a9a\" stroke=\"#222\" stroke-width=\"" << 2 * sw << "\"/>\n";
+  s << "<path d=\"" << pathData(plan.accessible) << "\" fill=\"none\" stroke=\"#555\" stroke-dasharray=\"" << 4 * sw
+    << "\" stroke-width=\"" << sw << "\"/>\n";
+  std::map<int, int> colour;  // tool id -> palette slot
+  for (const ToolCount& t : plan.stats.perTool) colour.emplace(t.toolId, static_cast<int>(colour.size()));
+  for (const Plunge& p : plan.plunges) {
+    const char* c = kPalette[colour[p.toolId] % 8];
+    s << "<circle cx=\"" << p.x << "\" cy=\"" << -p.y << "\" r=\"" << p.diameter / 2 << "\" fill=\"" << c
+      << "\" fill-opacity=\"0.22\" stroke=\"" << c << "\" stroke-width=\"" << sw << "\"/>\n";
+  }
+  // Tool paths: one polyline per tool, in execution order.
+  for (const ToolCount& t : plan.stats.perTool) {
+    s << "<polyline fill=\"none\" stroke=\"" << kPalette[colour[t.toolId] % 8] << "\" stroke-width=\"" << 1.5 * sw
+      << "\" stroke-opacity=\"0.9\" points=\"";
+    for (const Plunge& p : plan.plunges)
+      if (p.toolId == t.toolId) s << p.x << "," << -p.y << " ";
+    s << "\"/>\n";
+  }
+  if (!plan.uncovered.empty())
+    s << "<path d=\"" << pathData(plan.uncovered) << "\" fill=\"#e00000\" fill-rule=\"nonzero\" stroke=\"none\"/>\n";
+  // Legend.
+  const double fs = 0.032 * size;
+  double y = -hi.y - legendH + fs * 0.5;
+  s << std::setprecision(2);
+  s << "<text x=\"" << lo.x << "\" y=\"" << y + fs << "\" font-family=\"sans-serif\" font-size=\"" << fs << "\">"
+    << plan.stats.plungeCount << " plunges, coverage " << 100.0 * plan.stats.coverage << " % of the accessible area"
+    << " (uncovered in red), travel " << plan.stats.travelLength << " mm</text>\n";
+  y += 1.4 * fs;
+  for (const ToolCount& t : plan.stats.perTool) {
+    const char* c = kPalette[colour[t.toolId] % 8];
+    s << "<circle cx=\"" << lo.x + fs * 0.5 << "\" cy=\"" << y + fs * 0.6 << "\" r=\"" << fs * 0.45 << "\" fill=\"" << c
+      << "\" fill-opacity=\"0.5\" stroke=\"" << c << "\"  stroke-width=\"" << sw << "\"/>\n";
+    s << "<text x=\"" << lo.x + fs * 1.4 << "\" y=\"" << y + fs << "\" font-family=\"sans-serif\" font-size=\"" << fs
+      << "\">T" << t.toolId << "  diameter " << t.diameter << " mm: " << t.count << " plunges</text>\n";
+    y += 1.4 * fs;
+  }
+  s << "</svg>\n";
+  return s.str();
+}
+
+std::string planToGcode(const PlanInput& input, const Plan& plan) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(4);
+  s << "(PlungeRough: " << plan.stats.plungeCount << " plunges, coverage " << std::setprecision(2)
+    << 100.0 * plan.stats.coverage << " %)\n"
+    << std::setprecision(4);
+  s << "G21 G90 G17\n";
+  std::map<int, double> feed;
+  for (const Tool& t : input.tools) feed[t.id] = t.feed;
+  int current = -1;
+  for (const Plunge& p : plan.plunges) {
+    if (p.toolId != current) {
+      if (current >= 0) s << "M5\n";
+      s << "G0 Z" << input.safeZ << "\n";
+      s << "(T" << p.toolId << ": plunger diameter " << p.diameter << ")\n";
+      s << "T" << p.toolId << " M6\n";
+      s << "M3\n";
+      s << "G0 Z" << input.safeZ << "\n";
+      current = p.toolId;
+    }
+    s << "G0 X" << p.x << " Y" << p.y << "\n";
+    s << "G1 Z" << p.z << " F" << feed[p.toolId] << "\n";
+    s << "G0 Z" << input.safeZ << "\n";
+  }
+  if (current >= 0) s << "M5\n";
+  s << "M30\n";
+  return s.str();
+}
+
+}  // namespace plunge

@@ -1,0 +1,297 @@
+#include "plunge/packing.hpp"
+
+#include <algorithm>
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+#include <cmath>
+#include <numeric>
+#include <set>
+#include <tuple>
+
+#include "plunge/error.hpp"
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+
+namespace plunge {
+
+namespace {
+
+constexpr double kTol = 1e-9;      // feasibility slack (mm)
+constexpr double kParamTol = 1e-9;  // tangent point may sit this far past a wall's end (relative)
+
+Vec2 unitLeft(const Segment& s) {
+  const Vec2 d = s.b - s.a;
+  return leftNormal(d) * (1.0 / norm(d));
+}
+
+bool paramInside(double t) { return t >= -kParamTol && t <= 1.0 + kParamTol; }
+
+}  // namespace
+
+std::vector<Vec2> cornerPlacementsWallWall(const Segment& a, const Segment& b, double clearance) {
+  // Both walls offset by the clearance towards the material (eqs. 4.18-4.26);
+  // the corner placement is where the offset lines cross.
+  const Vec2 da = a.b - a.a, db = b.b - b.a;
+  const Vec2 pa = a.a + unitLeft(a) * clearance, pb = b.a + unitLeft(b) * clearance;
+  const auto x = intersectLines(pa, da, pb, db);
+  if (!x) return {};
+  const double ta = dot(*x - pa, da) / dot(da, da), tb = dot(*x - pb, db) / dot(db, db);
+  if (!paramInside(ta) || !paramInside(tb)) return {};
+  return {*x};
+}
+
+std::vector<Vec2> cornerPlacementsWallCircle(const Segment& wall, double clearance, const Circle& locus) {
+  // Offset wall line crossed with the offset circle (eqs. 4.27-4.38).
+  const Vec2 d = wall.b - wall.a;
+  const Vec2 p = wall.a + unitLeft(wall) * clearance;
+  std::vector<Vec2> out;
+  for (double t : intersectLineCircle(p, d, locus))
+    if (paramInside(t)) out.push_back(p + d * t);
+  return out;
+}
+
+std::vector<Vec2> cornerPlacementsCircleCircle(const Circle& locusA, const Circle& locusB) {
+  return intersectCircles(locusA, locusB);  // eqs. 4.39-4.54
+}
+
+double contactDistance(const PackedDisk& a, const PackedDisk& b) {
+  if (a.radius > b.radius) return a.radius + b.contactRadius;
+  if (b.radius > a.radius) return b.radius + a.contactRadius;
+  return a.contactRadius + b.contactRadius;
+}
+
+double holeDegree(double dMin, double r) { return 1.0 - std::clamp(dMin, 0.0, r) / r; }
+
+namespace {
+
+using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
+using BBox = bg::model::box<BPoint>;
+using PointValue = std::pair<BPoint, int>;
+
+BBox square(Vec2 p, double h) { return BBox(BPoint(p.x - h, p.y - h), BPoint(p.x + h, p.y + h)); }
+
+struct Site {
+  enum Kind { Wall, Vertex, Disk } kind;
+  int index;
+  bool operator==(const Site& o) const { return kind == o.kind && index == o.index; }
+};
+
+class Packer {
+ public:
+  Packer(const Region& region, const PackingOptions& opt) : region_(region), opt_(opt) {}
+
+  void packPhase(int tool, double radius) {
+    tool_ = tool;
+    r_ = radius;
+    c_ = radius + opt_.allowance;
+    rho_ = radius * opt_.contactRatio;
+    proto_ = {{}, r_, rho_, tool_};
+    cands_.clear();
+    candIndex_.clear();
+    queue_.clear();
+    seedCandidates();
+    while (!queue_.empty()) {
+      const int id = std::get<3>(*queue_.begin());
+      place(cands_[id].p);
+    }
+  }
+
+  std::vector<PackedDisk> disks;
+
+ private:
+  struct Candidate {
+    Vec2 p;
+    Site g1, g2;
+    double dMin;
+    bool alive;
+  };
+  // Max hole degree first; ties by lowest y then x, so equal-degree placements grow
+  // row by row into a lattice; then creation order.
+  using Key = std::tuple<long long, double, double, int>;
+
+  Key keyOf(int id) const {
+    const Candidate& c = cands_[id];
+    return {-std::llround(holeDegree(c.dMin, r_) * 1e9), c.p.y, c.p.x, id};
+  }
+
+  Circle locus(const Site& s) const {
+    if (s.kind == Site::Vertex) return {region_.vertices()[s.index].p, c_};
+    return {disks[s.index].center, contactDistance(disks[s.index], proto_)};
+  }
+
+  // Cheap rejections before the full feasibility test: a disk touching a reflex
+  // vertex must lie in the vertex's normal cone, or a neighbouring wall is closer.
+  bool vertexConeOk(const Site& s, Vec2 p) const {
+    if (s.kind != Site::Vertex) return true;
+    const auto& v = region_.vertices()[s.index];
+    const Segment& in = region_.walls()[v.prevWall];
+    const Segment& out = region_.walls()[v.nextWall];
+    const Vec2 u = p - v.p;
+    const double nu = norm(u);
+    return dot(u, in.b - in.a) >= -1e-9 * nu * norm(in.b - in.a) &&
+           dot(u, out.b - out.a) <= 1e-9 * nu * norm(out.b - out.a);
+  }
+
+  bool disksClear(Vec2 p) const {
+    for (auto it = diskIndex_.qbegin(bgi::intersects(square(p, rho_ + maxReach_))); it != diskIndex_.qend(); ++it) {
+      const PackedDisk& d = disks[it->second];
+      if (dist(p, d.center) < contactDistance(d, proto_) - kTol) return false;
+    }
+    return true;
+  }
+
+  bool feasible(Vec2 p) const {
+    return region_.wallDistance(p, c_) >= c_ - kTol && disksClear(p) && region_.contains(p);
+  }
+
+  Vec2 tangentPoint(const Site& s, Vec2 p) const {
+    if (s.kind == Site::Wall) return closestPointOnSegment(region_.walls()[s.index], p);
+    return region_.vertices()[s.index].p;
+  }
+
+  // d_min of eq. 4.68: gap to the nearest item other than the two tangent ones.
+  double dMinOf(Vec2 p, const Site& g1, const Site& g2) const {
+    double best = r_;
+    std::vector<Vec2> touch;
+    for (const Site* g : {&g1, &g2})
+      if (g->kind != Site::Disk) touch.push_back(tangentPoint(*g, p));
+    for (int w : region_.wallsNear(p, c_ + r_)) {
+      if ((g1.kind == Site::Wall && g1.index == w) || (g2.kind == Site::Wall && g2.index == w)) continue;
+      const Vec2 q = closestPointOnSegment(region_.walls()[w], p);
+      // The same wall point reached through a neighbouring segment is not another item.
+      bool same = false;
+      for (const Vec2& t : touch) same = same || dist(q, t) <= 1e-7;
+      if (same) continue;
+      best = std::min(best, dist(p, q) - c_);
+    }
+    const double reach = rho_ + maxReach_ + r_;
+    for (auto it = diskIndex_.qbegin(bgi::intersects(square(p, reach))); it != diskIndex_.qend(); ++it) {
+      const int k = it->second;
+      if ((g1.kind == Site::Disk && g1.index == k) || (g2.kind == Site::Disk && g2.index == k)) continue;
+      best = std::min(best, dist(p, disks[k].center) - contactDistance(disks[k], proto_));
+    }
+    return std::max(best, 0.0);
+  }
+
+  void addCandidate(Vec2 p, const Site& a, const Site& b) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) return;
+    if (!vertexConeOk(a, p) || !vertexConeOk(b, p) || !feasible(p)) return;
+    const int id = static_cast<int>(cands_.size());
+    cands_.push_back({p, a, b, dMinOf(p, a, b), true});
+    candIndex_.insert({BPoint(p.x, p.y), id});
+    queue_.insert(keyOf(id));
+  }
+
+  void addPair(const Site& a, const Site& b) {
+    const auto& walls = region_.walls();
+    std::vector<Vec2> pts;
+    if (a.kind == Site::Wall && b.kind == Site::Wall)
+      pts = cornerPlacementsWallWall(walls[a.index], walls[b.index], c_);
+    else if (a.kind == Site::Wall)
+      pts = cornerPlacementsWallCircle(walls[a.index], c_, locus(b));
+    else if (b.kind == Site::Wall)
+      pts = cornerPlacementsWallCircle(walls[b.index], c_, locus(a));
+    else
+      pts = cornerPlacementsCircleCircle(locus(a), locus(b));
+    for (const Vec2& p : pts) addCandidate(p, a, b);
+  }
+
+  bool isEndpointOf(int vertex, int wall) const {
+    const auto& v = region_.vertices()[vertex];
+    return v.prevWall == wall || v.nextWall == wall;
+  }
+
+  // Pairs of disk k with every wall, reflex vertex and disk in reach (with
+  // `laterOnly`, only disks of higher index, so that seeding makes each pair once).
+  void pairDisk(int k, bool laterOnly) {
+    const Site s{Site::Disk, k};
+    const Vec2 at = disks[k].center;
+    const double siteReach = contactDistance(disks[k], proto_);  // the locus radius
+    for (int w : region_.wallsNear(at, siteReach + c_)) addPair(s, {Site::Wall, w});
+    for (int v : region_.reflexVerticesNear(at, siteReach + c_)) addPair(s, {Site::Vertex, v});
+    std::vector<int> near;
+    for (auto it = diskIndex_.qbegin(bgi::intersects(square(at, siteReach + rho_ + maxReach_)));
+         it != diskIndex_.qend(); ++it)
+      if (it->second != k && (!laterOnly || it->second > k)) near.push_back(it->second);
+    std::sort(near.begin(), near.end());
+    for (int o : near) addPair(s, {Site::Disk, o});
+  }
+
+  void seedCandidates() {
+    const auto& walls = region_.walls();
+    for (size_t w = 0; w < walls.size(); ++w) {
+      const Segment& s = walls[w];
+      const Vec2 lo{std::min(s.a.x, s.b.x) - 2 * c_, std::min(s.a.y, s.b.y) - 2 * c_};
+      const Vec2 hi{std::max(s.a.x, s.b.x) + 2 * c_, std::max(s.a.y, s.b.y) + 2 * c_};
+      const Site site{Site::Wall, static_cast<int>(w)};
+      for (int o : region_.wallsInBox(lo, hi))
+        if (o > static_cast<int>(w)) addPair(site, {Site::Wall, o});
+      const Vec2 mid = (s.a + s.b) * 0.5;
+      for (int v : region_.reflexVerticesNear(mid, 0.5 * norm(s.b - s.a) + 2 * c_))
+        if (!isEndpointOf(v, static_cast<int>(w))) addPair(site, {Site::Vertex, v});
+    }
+    for (size_t v = 0; v < region_.vertices().size(); ++v) {
+      if (!region_.vertices()[v].reflex) continue;
+      for (int u : region_.reflexVerticesNear(region_.vertices()[v].p, 2 * c_))
+        if (u > static_cast<int>(v)) addPair({Site::Vertex, static_cast<int>(v)}, {Site::Vertex, u});
+    }
+    for (size_t k = 0; k < disks.size(); ++k) pairDisk(static_cast<int>(k), true);
+  }
+
+  void place(Vec2 p) {
+    const int k = static_cast<int>(disks.size());
+    PackedDisk d = proto_;
+    d.center = p;
+    disks.push_back(d);
+    diskIndex_.insert({BPoint(p.x, p.y), k});
+    maxReach_ = std::max(maxReach_, r_);
+    // Candidates now overlapping die; those nearby may see a smaller d_min.
+    std::vector<PointValue> hits;
+    candIndex_.query(bgi::intersects(square(p, 2 * rho_ + r_)), std::back_inserter(hits));
+    for (const PointValue& h : hits) {
+      Candidate& c = cands_[h.second];
+      if (!c.alive) continue;
+      const double gap = dist(c.p, p) - contactDistance(d, proto_);
+      if (gap < -kTol) {
+        queue_.erase(keyOf(h.second));
+        c.alive = false;
+      } else if (gap < c.dMin) {
+        queue_.erase(keyOf(h.second));
+        c.dMin = std::max(gap, 0.0);
+        queue_.insert(keyOf(h.second));
+      }
+    }
+    pairDisk(k, false);
+  }
+
+  const Region& region_;
+  PackingOptions opt_;
+  PackedDisk proto_;  // the circle of this phase
+  int tool_ = 0;
+  double r_ = 0, c_ = 0, rho_ = 0, maxReach_ = 0;  // maxReach_: largest radius placed
+  std::vector<Candidate> cands_;
+  bgi::rtree<PointValue, bgi::rstar<16>> candIndex_;
+  bgi::rtree<PointValue, bgi::rstar<16>> diskIndex_;
+  std::set<Key> queue_;
+};
+
+}  // namespace
+
+std::vector<PackedDisk> packMaxHoleDegree(const Region& region, const std::vector<double>& radii,
+                                          const PackingOptions& options) {
+  if (!(options.contactRatio > 0.0 && options.contactRatio <= 1.0))
+    throw Error("packing contact ratio must be in (0, 1]");
+  if (!(options.allowance >= 0.0) || !std::isfinite(options.allowance))
+    throw Error("radial allowance must be a finite number >= 0");
+  std::vector<int> order(radii.size());
+  std::iota(order.begin(), order.end(), 0);
+  for (double r : radii)
+    if (!(r > 0.0) || !std::isfinite(r)) throw Error("tool radius must be a finite number > 0");
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return radii[a] > radii[b]; });
+  Packer packer(region, options);
+  for (int t : order) packer.packPhase(t, radii[t]);
+  return packer.disks;
+}
+
+}  // namespace plunge

@@ -1,0 +1,122 @@
+#include "plunge/plan.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+
+#include "plunge/covering.hpp"
+#include "plunge/error.hpp"
+#include "plunge/packing.hpp"
+#include "plunge/polygon.hpp"
+#include "plunge/sequencing.hpp"
+
+namespace plunge {
+
+namespace {
+
+void requireFinite(double v, const std::string& what) {
+  if (!std::isfinite(v)) throw Error(what + " is not a finite number");
+}
+
+}  // namespace
+
+void validate(PlanInput& in) {
+  if (in.tools.empty()) throw Error("tools: at least one tool is required");
+  std::set<int> ids;
+  std::set<double> diameters;
+  for (size_t i = 0; i < in.tools.size(); ++i) {
+    const Tool& t = in.tools[i];
+    const std::string name = "tools[" + std::to_string(i) + "]";
+    requireFinite(t.diameter, name + ".diameter");
+    if (t.diameter <= 0.0) throw Error(name + ".diameter must be > 0");
+    requireFinite(t.feed, name + ".feed");
+    if (t.feed <= 0.0) throw Error(name + ".feed must be > 0");
+    if (t.id <= 0) throw Error(name + ".id must be a positive integer");
+    if (!ids.insert(t.id).second) throw Error(name + ".id " + std::to_string(t.id) + " is used twice");
+    if (!diameters.insert(t.diameter).second)
+      throw Error(name + ".diameter " + std::to_string(t.diameter) + " is given twice");
+  }
+  std::stable_sort(in.tools.begin(), in.tools.end(),
+                   [](const Tool& a, const Tool& b) { return a.diameter > b.diameter; });
+  requireFinite(in.topZ, "top_z");
+  requireFinite(in.safeZ, "safe_z");
+  requireFinite(in.radialAllowance, "allowance.radial");
+  requireFinite(in.floorAllowance, "allowance.floor");
+  if (in.radialAllowance < 0.0) throw Error("allowance.radial must be >= 0");
+  if (in.floorAllowance < 0.0) throw Error("allowance.floor must be >= 0");
+  if (in.safeZ <= in.topZ) throw Error("safe_z must be above top_z");
+  if (in.floor.kind == Floor::Kind::Flat) {
+    requireFinite(in.floor.z, "floor.z");
+    if (in.floor.z + in.floorAllowance >= in.topZ)
+      throw Error("floor.z plus the floor allowance must be below top_z");
+  } else {
+    throw Error("floor: sculptured floors (expression, brep) are not supported yet; use {\"z\": ...}");
+  }
+  if (in.strategy != "packing") throw Error("strategy: unknown strategy '" + in.strategy + "' (use \"packing\")");
+  requireFinite(in.minCoverage, "min_coverage");
+  if (!(in.minCoverage > 0.0 && in.minCoverage <= 1.0)) throw Error("min_coverage must be in (0, 1]");
+  requireFinite(in.contactRatio, "contact_ratio");
+  if (!(in.contactRatio >= 0.5 && in.contactRatio <= 1.0)) throw Error("contact_ratio must be in [0.5, 1]");
+  if (in.start) {
+    requireFinite(in.start->x, "start.x");
+    requireFinite(in.start->y, "start.y");
+  }
+}
+
+Plan plan(PlanInput in) {
+  const auto t0 = std::chrono::steady_clock::now();
+  validate(in);
+  const Region region(in.boundary, in.islands);
+
+  std::vector<double> radii;
+  for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
+  const double rMin = radii.back();
+
+  Plan out;
+  out.accessible = accessibleRegion(region, rMin, in.radialAllowance);
+  if (poly::area(out.accessible) <= 0.0) {
+    throw Error("no tool fits in the pocket: the smallest tool (diameter " + std::to_string(2 * rMin) +
+                ") with the radial allowance does not fit anywhere");
+  }
+
+  PackingOptions po;
+  po.allowance = in.radialAllowance;
+  po.contactRatio = in.contactRatio;
+  const std::vector<PackedDisk> packed = packMaxHoleDegree(region, radii, po);
+
+  CoveringOptions co;
+  co.allowance = in.radialAllowance;
+  co.minCoverage = in.minCoverage;
+  const CoverResult cover = coverRegion(region, radii, packed, co);
+
+  // Execution order: tools largest first, each tool's plunges as a short open path
+  // starting nearest to where the previous tool ended.
+  Vec2 at = in.start ? *in.start : region.loops()[0][0];
+  const double zStop = in.floor.z + in.floorAllowance;
+  for (size_t t = 0; t < in.tools.size(); ++t) {
+    std::vector<Vec2> pts;
+    for (const CoverDisk& d : cover.disks)
+      if (d.tool == static_cast<int>(t)) pts.push_back(d.center);
+    if (pts.empty()) continue;
+    for (int i : tour(pts, false, at)) {
+      const Vec2 p = pts[i];
+      if (!out.plunges.empty()) out.stats.travelLength += dist({out.plunges.back().x, out.plunges.back().y}, p);
+      out.plunges.push_back({p.x, p.y, in.tools[t].diameter, in.tools[t].id, zStop});
+      at = p;
+    }
+    out.stats.perTool.push_back({in.tools[t].id, in.tools[t].diameter, static_cast<int>(pts.size())});
+  }
+
+  out.uncovered = cover.uncovered;
+  out.stats.plungeCount = static_cast<int>(out.plunges.size());
+  out.stats.regionArea = poly::area(allowedRegion(region, in.radialAllowance));
+  out.stats.accessibleArea = cover.accessibleArea;
+  out.stats.coveredArea = cover.coveredArea;
+  out.stats.coverage = cover.accessibleArea > 0 ? cover.coveredArea / cover.accessibleArea : 0.0;
+  out.stats.hexReferenceCount = cover.accessibleArea / (1.5 * std::sqrt(3.0) * radii.front() * radii.front());
+  out.stats.planningSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace plunge

@@ -1,0 +1,231 @@
+#include "plunge/region.hpp"
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "plunge/error.hpp"
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+
+namespace plunge {
+
+using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
+using BBox = bg::model::box<BPoint>;
+using BoxValue = std::pair<BBox, int>;
+using PointValue = std::pair<BPoint, int>;
+
+struct Region::Index {
+  bgi::rtree<BoxValue, bgi::rstar<16>> walls;
+  bgi::rtree<PointValue, bgi::rstar<16>> reflex;
+};
+
+namespace {
+
+std::string fmt(Vec2 p) {
+  std::ostringstream s;
+  s.precision(6);
+  s << "(" << p.x << ", " << p.y << ")";
+  return s.str();
+}
+
+std::string loopName(size_t i) {
+  return i == 0 ? std::string("boundary") : "island " + std::to_string(i);
+}
+
+Loop cleanLoop(const Loop& in, const std::string& name) {
+  Loop out;
+  for (const Vec2& p : in) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y))
+      throw Error(name + ": coordinate is not a finite number");
+    if (out.empty() || out.back() != p) out.push_back(p);
+  }
+  while (out.size() > 1 && out.front() == out.back()) out.pop_back();
+  if (out.size() < 3)
+    throw Error(name + ": needs at least 3 distinct points, got " + std::to_string(out.size()));
+  return out;
+}
+
+BBox boxOf(const Segment& s) {
+  return BBox(BPoint(std::min(s.a.x, s.b.x), std::min(s.a.y, s.b.y)),
+              BPoint(std::max(s.a.x, s.b.x), std::max(s.a.y, s.b.y)));
+}
+
+// Ray-casting parity of one loop (half-open rule).
+bool insideLoop(const Loop& loop, Vec2 p) {
+  bool in = false;
+  const size_t n = loop.size();
+  for (size_t i = 0, j = n - 1; i < n; j = i++) {
+    const Vec2 a = loop[j], b = loop[i];
+    if ((a.y > p.y) != (b.y > p.y)) {
+      const double x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+      if (x > p.x) in = !in;
+    }
+  }
+  return in;
+}
+
+}  // namespace
+
+Region::~Region() = default;
+Region::Region(Region&&) noexcept = default;
+Region& Region::operator=(Region&&) noexcept = default;
+
+Region::Region(const Loop& boundary, const std::vector<Loop>& islands) : index_(new Index) {
+  loops_.push_back(cleanLoop(boundary, "boundary"));
+  for (size_t i = 0; i < islands.size(); ++i) loops_.push_back(cleanLoop(islands[i], loopName(i + 1)));
+
+  // Orientation: material to remove on the left of every wall.
+  for (size_t i = 0; i < loops_.size(); ++i) {
+    const double a = signedArea(loops_[i]);
+    double scale = 0.0;
+    for (const Vec2& p : loops_[i]) scale = std::max({scale, std::fabs(p.x), std::fabs(p.y), 1.0});
+    if (std::fabs(a) <= 1e-12 * scale * scale) throw Error(loopName(i) + ": has zero area");
+    if ((i == 0) != (a > 0)) std::reverse(loops_[i].begin(), loops_[i].end());
+  }
+
+  // Walls and vertices.
+  std::vector<BoxValue> boxes;
+  for (size_t li = 0; li < loops_.size(); ++li) {
+    const Loop& L = loops_[li];
+    const int first = static_cast<int>(walls_.size());
+    loopFirst_.push_back(walls_.size());
+    const int n = static_cast<int>(L.size());
+    for (int k = 0; k < n; ++k) {
+      walls_.push_back({L[k], L[(k + 1) % n]});
+      wallLoop_.push_back(static_cast<int>(li));
+    }
+    for (int k = 0; k < n; ++k) {
+      const int prev = first + (k + n - 1) % n, next = first + k;
+      const Vec2 din = walls_[prev].b - walls_[prev].a, dout = walls_[next].b - walls_[next].a;
+      // Interior on the left: a right turn is a reflex (concave) corner of the region.
+      vertices_.push_back({L[k], prev, next, cross(din, dout) < 0.0});
+    }
+  }
+  for (size_t i = 0; i < walls_.size(); ++i) boxes.emplace_back(boxOf(walls_[i]), static_cast<int>(i));
+  index_->walls = decltype(index_->walls)(boxes.begin(), boxes.end());
+
+  // Self-intersections and loops crossing each other.
+  for (size_t i = 0; i < walls_.size(); ++i) {
+    std::vector<BoxValue> hits;
+    index_->walls.query(bgi::intersects(boxOf(walls_[i])), std::back_inserter(hits));
+    for (const BoxValue& h : hits) {
+      const size_t j = static_cast<size_t>(h.second);
+      if (j <= i) continue;
+      const Segment& s1 = walls_[i];
+      const Segment& s2 = walls_[j];
+      const int l1 = wallLoop_[i], l2 = wallLoop_[j];
+      // Walls of one loop are numbered consecutively from loopFirst_[loop].
+      const size_t n = loops_[l1].size(), f = loopFirst_[l1];
+      const bool adjacent = l1 == l2 && (j == i + 1 || (i == f && j == f + n - 1));
+      if (adjacent) {
+        // Adjacent walls share one end; they conflict only when they fold back on each other.
+        const Vec2 d1 = s1.b - s1.a, d2 = s2.b - s2.a;
+        const bool folds = std::fabs(cross(d1, d2)) <= 1e-12 * norm(d1) * norm(d2) && dot(d1, d2) < 0.0;
+        if (folds)
+          throw Error(loopName(l1) + ": self-intersecting (the loop folds back on itself near " +
+                      fmt(j == i + 1 ? s1.b : s1.a) + ")");
+        continue;
+      }
+      if (!segmentsIntersect(s1, s2)) continue;
+      Vec2 where = s1.a;
+      if (auto x = intersectLines(s1.a, s1.b - s1.a, s2.a, s2.b - s2.a)) where = *x;
+      if (l1 == l2) throw Error(loopName(l1) + ": self-intersecting near " + fmt(where));
+      if (l1 == 0 || l2 == 0)
+        throw Error(loopName(std::max(l1, l2)) + ": crosses or touches the boundary near " + fmt(where));
+      throw Error("islands " + std::to_string(l1) + " and " + std::to_string(l2) + " overlap near " +
+                  fmt(where));
+    }
+  }
+  // No crossings: each island is wholly inside or wholly outside every other loop.
+  for (size_t i = 1; i < loops_.size(); ++i) {
+    if (!insideLoop(loops_[0], loops_[i][0])) throw Error(loopName(i) + ": lies outside the boundary");
+    for (size_t j = 1; j < loops_.size(); ++j)
+      if (i != j && insideLoop(loops_[j], loops_[i][0]))
+        throw Error("islands " + std::to_string(j) + " and " + std::to_string(i) + " overlap (island " +
+                    std::to_string(i) + " lies inside island " + std::to_string(j) + ")");
+  }
+
+  std::vector<PointValue> reflex;
+  for (size_t v = 0; v < vertices_.size(); ++v)
+    if (vertices_[v].reflex) reflex.emplace_back(BPoint(vertices_[v].p.x, vertices_[v].p.y), static_cast<int>(v));
+  index_->reflex = decltype(index_->reflex)(reflex.begin(), reflex.end());
+
+  lo_ = hi_ = loops_[0][0];
+  for (const Vec2& p : loops_[0]) {
+    lo_ = {std::min(lo_.x, p.x), std::min(lo_.y, p.y)};
+    hi_ = {std::max(hi_.x, p.x), std::max(hi_.y, p.y)};
+  }
+}
+
+double Region::area() const {
+  double a = 0.0;
+  for (const Loop& L : loops_) a += signedArea(L);
+  return a;
+}
+
+bool Region::contains(Vec2 p) const {
+  // Count crossings of the ray towards +x; the R-tree finds the walls that can cross it.
+  const BBox ray(BPoint(p.x, p.y), BPoint(std::numeric_limits<double>::max(), p.y));
+  bool in = false;
+  for (auto it = index_->walls.qbegin(bgi::intersects(ray)); it != index_->walls.qend(); ++it) {
+    const Segment& s = walls_[it->second];
+    if ((s.a.y > p.y) != (s.b.y > p.y)) {
+      const double x = s.a.x + (p.y - s.a.y) / (s.b.y - s.a.y) * (s.b.x - s.a.x);
+      if (x > p.x) in = !in;
+    }
+  }
+  return in;
+}
+
+double Region::wallDistance(Vec2 p, double within) const {
+  const BBox q(BPoint(p.x - within, p.y - within), BPoint(p.x + within, p.y + within));
+  double best = std::numeric_limits<double>::infinity();
+  for (auto it = index_->walls.qbegin(bgi::intersects(q)); it != index_->walls.qend(); ++it)
+    best = std::min(best, distanceToSegment(walls_[it->second], p));
+  return best;
+}
+
+bool Region::nearestWallPoint(Vec2 p, double within, Vec2& point, double& distance, int* wall) const {
+  const BBox q(BPoint(p.x - within, p.y - within), BPoint(p.x + within, p.y + within));
+  distance = std::numeric_limits<double>::infinity();
+  for (auto it = index_->walls.qbegin(bgi::intersects(q)); it != index_->walls.qend(); ++it) {
+    const Vec2 c = closestPointOnSegment(walls_[it->second], p);
+    const double d = dist(c, p);
+    if (d < distance) {
+      distance = d;
+      point = c;
+      if (wall) *wall = it->second;
+    }
+  }
+  return std::isfinite(distance);
+}
+
+bool Region::diskFits(Vec2 c, double clearance, double tol) const {
+  return wallDistance(c, clearance) >= clearance - tol && contains(c);
+}
+
+std::vector<int> Region::wallsNear(Vec2 p, double radius) const {
+  return wallsInBox({p.x - radius, p.y - radius}, {p.x + radius, p.y + radius});
+}
+
+std::vector<int> Region::wallsInBox(Vec2 lo, Vec2 hi) const {
+  std::vector<int> out;
+  const BBox q(BPoint(lo.x, lo.y), BPoint(hi.x, hi.y));
+  for (auto it = index_->walls.qbegin(bgi::intersects(q)); it != index_->walls.qend(); ++it)
+    out.push_back(it->second);
+  return out;
+}
+
+std::vector<int> Region::reflexVerticesNear(Vec2 p, double radius) const {
+  const BBox q(BPoint(p.x - radius, p.y - radius), BPoint(p.x + radius, p.y + radius));
+  std::vector<int> out;
+  for (auto it = index_->reflex.qbegin(bgi::intersects(q)); it != index_->reflex.qend(); ++it)
+    out.push_back(it->second);
+  return out;
+}
+
+}  // namespace plunge
