@@ -11,8 +11,6 @@
 #include <map>
 #include <numeric>
 #include <queue>
-#include <chrono>
-#include <cstdio>
 
 #include "clip.hpp"
 #include "plunge/error.hpp"
@@ -37,11 +35,41 @@ using BoxValue = std::pair<BBox, int>;
 
 BBox boxOf(Vec2 lo, Vec2 hi) { return BBox(BPoint(lo.x, lo.y), BPoint(hi.x, hi.y)); }
 
-clip::Paths diskPaths(const std::vector<Circle>& disks, bool circumscribed) {
-  clip::Paths out;
-  out.reserve(disks.size());
-  for (const Circle& c : disks) out.push_back(clip::diskPath(c, kDiskChord, circumscribed));
-  return out;
+// `area` minus the disks. Done tile by tile: Clipper's sweep slows down with
+// the number of edges a scanline crosses, and the uncovered part is small, so
+// merging the tiles' results again costs little.
+clip::Paths subtractDisks(const clip::Paths& area, const std::vector<Circle>& disks, bool circumscribed) {
+  if (area.empty()) return {};
+  Vec2 lo, hi;
+  clip::bounds(area, lo, hi);
+  double rMax = 0.0;
+  for (const Circle& c : disks) rMax = std::max(rMax, c.r);
+  const double tile = std::max(10.0 * rMax, 1.0);
+  const int nx = std::max(1, static_cast<int>(std::ceil((hi.x - lo.x) / tile)));
+  const int ny = std::max(1, static_cast<int>(std::ceil((hi.y - lo.y) / tile)));
+  std::vector<clip::Paths> bucket(static_cast<size_t>(nx) * ny);
+  for (const Circle& c : disks) {
+    const int x0 = std::clamp(static_cast<int>((c.c.x - c.r - lo.x) / tile), 0, nx - 1);
+    const int x1 = std::clamp(static_cast<int>((c.c.x + c.r - lo.x) / tile), 0, nx - 1);
+    const int y0 = std::clamp(static_cast<int>((c.c.y - c.r - lo.y) / tile), 0, ny - 1);
+    const int y1 = std::clamp(static_cast<int>((c.c.y + c.r - lo.y) / tile), 0, ny - 1);
+    const clip::Path p = clip::diskPath(c, kDiskChord, circumscribed);
+    for (int j = y0; j <= y1; ++j)
+      for (int i = x0; i <= x1; ++i) bucket[static_cast<size_t>(j) * nx + i].push_back(p);
+  }
+  clip::Paths left;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      // Tiles share their edges exactly, so the final union welds the pieces again.
+      const Vec2 a{lo.x + i * tile, lo.y + j * tile};
+      const Vec2 b{i == nx - 1 ? hi.x + 1.0 : a.x + tile, j == ny - 1 ? hi.y + 1.0 : a.y + tile};
+      const clip::Path rect{clip::toInt(a), clip::toInt({b.x, a.y}), clip::toInt(b), clip::toInt({a.x, b.y})};
+      const clip::Paths part = clip::boolean(area, {rect}, ClipperLib::ctIntersection);
+      if (part.empty()) continue;
+      for (clip::Path& q : clip::boolean(part, bucket[static_cast<size_t>(j) * nx + i], ClipperLib::ctDifference))
+        left.push_back(std::move(q));
+    }
+  return clip::boolean(left, {}, ClipperLib::ctUnion);
 }
 
 std::vector<Vec2> verticesOf(const clip::Paths& p) {
@@ -128,7 +156,7 @@ Polygons accessibleRegion(const Region& region, double minRadius, double allowan
 }
 
 Polygons uncoveredRegion(const Polygons& area, const std::vector<Circle>& disks) {
-  return clip::toPolygons(clip::boolean(clip::toPaths(area), diskPaths(disks, false), ClipperLib::ctDifference));
+  return clip::toPolygons(subtractDisks(clip::toPaths(area), disks, false));
 }
 
 DelaunayGaps delaunayGaps(const std::vector<PackedDisk>& packed) {
@@ -207,17 +235,13 @@ class Coverer {
       result_.disks.push_back({d.center, d.radius, d.tool, Stage::Packing});
       circles.push_back({d.center, d.radius});
     }
-    const clip::Paths left = clip::boolean(accessible_, diskPaths(circles, true), ClipperLib::ctDifference);
+    const clip::Paths left = subtractDisks(accessible_, circles, true);
     for (clip::Paths& c : clip::components(left)) addPiece(std::move(c));
 
-    auto T = [](){ return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); };
-    double t0 = T();
     coverDelaunayGaps(packed);
-    double t1 = T();
     generating_ = true;
     for (size_t i = 0; i < pieces_.size(); ++i)
       if (pieces_[i].alive) generateCandidates(static_cast<int>(i));
-    double t2 = T();
     // The greedy counts with circumscribed disks; the measurement is conservative.
     // Where the two disagree about the target, cover a little more.
     double target = opt_.minCoverage * result_.accessibleArea;
@@ -231,11 +255,6 @@ class Coverer {
       if (shortBy <= 0.0 || round == 4) break;
       target += shortBy + 1e-4 * result_.accessibleArea;
     }
-    double t3 = T();
-    int cnt[3][8] = {};
-    for (const CoverDisk& d : result_.disks) cnt[int(d.stage)][d.tool]++;
-    for (int st = 0; st < 3; ++st) fprintf(stderr, "TRACE stage %d: %d %d %d\n", st, cnt[st][0], cnt[st][1], cnt[st][2]);
-    fprintf(stderr, "TRACE gaps %.3f gen %.3f residual %.3f disks %zu gains %d\n", t1-t0, t2-t1, t3-t2, result_.disks.size(), gains_);
     return std::move(result_);
   }
 
@@ -325,9 +344,7 @@ class Coverer {
     }
   }
 
-  mutable int gains_ = 0;
   double gainOf(Vec2 c, double r) const {
-    ++gains_;
     const clip::Paths disk{clip::diskPath({c, r}, kDiskChord, true)};
     double g = 0.0;
     for (int id : piecesNear({c.x - r, c.y - r}, {c.x + r, c.y + r}))
@@ -342,26 +359,20 @@ class Coverer {
   bool feasibleNear(Vec2 a, double r, Vec2& out) const {
     const double c = r + opt_.allowance;
     Vec2 x = a;
-    if (!region_.contains(x)) {
-      Vec2 w;
-      double d;
-      int wall;
-      if (!region_.nearestWallPoint(x, 4 * rMax_ + c, w, d, &wall)) return false;
-      const Segment& s = region_.walls()[wall];
-      x = w + leftNormal(s.b - s.a) * ((c + 1e-7) / norm(s.b - s.a));
-    }
     for (int iter = 0; iter < 12; ++iter) {
       Vec2 w;
       double d;
-      if (!region_.nearestWallPoint(x, c, w, d) || d >= c - kTol) {
-        if (region_.diskFits(x, c)) {
-          out = x;
-          return true;
-        }
-        return false;
+      int wall;
+      const bool inside = region_.contains(x);
+      if (!region_.nearestWallPoint(x, inside ? c : 4 * rMax_ + c, w, d, &wall) || (inside && d >= c - kTol)) {
+        if (!inside || !region_.diskFits(x, c)) return false;
+        out = x;
+        return true;
       }
-      if (d < 1e-12) return false;
-      x = w + (x - w) * ((c + 1e-7) / d);
+      // Away from the wall; on it or beyond it, along the wall's normal into the material.
+      const Segment& s = region_.walls()[wall];
+      const Vec2 away = inside && d > 1e-9 ? (x - w) * (1.0 / d) : leftNormal(s.b - s.a) * (1.0 / norm(s.b - s.a));
+      x = w + away * (c + 1e-7);
     }
     // Still squeezed between walls: try the corner placements of the walls in reach.
     const std::vector<int> near = region_.wallsNear(x, c);
@@ -464,6 +475,7 @@ class Coverer {
     if (p.area < crumb_) return;
     std::vector<Vec2> anchors;
     anchorsOf(p.poly, 0, anchors);
+
     for (const Vec2& a : anchors)
       for (int t : sorted_) {
         Vec2 c;

@@ -44,7 +44,7 @@ PlanInput planInputFromJson(const std::string& text) {
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax errors, numbers out of range
     std::string msg = e.what();
     throw Error("invalid JSON: " + msg.substr(msg.find(']') == std::string::npos ? 0 : msg.find(']') + 2));
   }

@@ -52,14 +52,14 @@ def main():
           smooth(0, 0, lambda t: 95 + 18 * math.sin(3 * t) + 9 * math.cos(5 * t + 0.4), 0.8),
           [smooth(12, -8, lambda t: 26 + 7 * math.sin(2 * t + 1.0) + 4 * math.cos(3 * t), 0.6)])
     # Two lobes meeting at a narrow neck (16 mm wide: only the 12 and 6 mm tools pass).
-    lobe = 50.0
-    a = math.asin(8.0 / lobe)
-    right = [[110 + lobe * math.cos(t), lobe * math.sin(t)]
-             for t in [math.pi - a - (2 * math.pi - 2 * a) * k / 120 for k in range(121)]]
-    left = [[-lobe * math.cos(t), lobe * math.sin(t)]
-            for t in [a + (2 * math.pi - 2 * a) * k / 120 for k in range(121)]]
-    neck = [[round(x, 6), round(y, 6)] for x, y in left[::-1]] + [[round(x, 6), round(y, 6)] for x, y in right[::-1]]
-    write("neck", neck)
+    lobe, half, gap = 50.0, 8.0, 110.0
+    a = math.asin(half / lobe)
+    n = 120
+    left = [(lobe * math.cos(t), lobe * math.sin(t))
+            for t in (a + (2 * math.pi - 2 * a) * k / n for k in range(n + 1))]
+    right = [(gap + lobe * math.cos(t), lobe * math.sin(t))
+             for t in (-(math.pi - a) + (2 * math.pi - 2 * a) * k / n for k in range(n + 1))]
+    write("neck", [[round(x, 6), round(y, 6)] for x, y in left + right])
     # Benchmark: 600 x 400 with four round islands of 60 mm, tools 12, 8 and 5 mm.
     write("benchmark", [[0, 0], [600, 0], [600, 400], [0, 400]],
           [circle(150, 100, 30, 180), circle(450, 100, 30, 180), circle(150, 300, 30, 180), circle(450, 300, 30, 180)],
@@ -67,5 +67,23 @@ def main():
           allowance={"radial": 0.0, "floor": 0.0})
 
 
+def example():
+    """The bundled example of the README: a mould cavity with free-form walls, a round
+    boss and a free-form rib island."""
+    outer = smooth(0, 0, lambda t: 110 + 22 * math.cos(2 * t) + 10 * math.sin(3 * t + 0.5), 0.7)
+    outer = [[round(1.25 * x, 6), round(0.8 * y, 6)] for x, y in outer]
+    boss = circle(-60, 5, 16, 96)
+    rib = smooth(55, -5, lambda t: 14 + 9 * math.cos(2 * t), 0.5)
+    data = {"version": 1, "boundary": outer, "islands": [boss, rib],
+            "tools": [{"diameter": 25.0, "id": 1, "feed": 150}, {"diameter": 16.0, "id": 2, "feed": 200},
+                      {"diameter": 8.0, "id": 3, "feed": 250}],
+            "top_z": 0.0, "safe_z": 5.0, "floor": {"z": -30.0},
+            "allowance": {"radial": 0.5, "floor": 0.3}, "strategy": "packing", "seed": 0}
+    path = os.path.join(HERE, "..", "..", "resources", "examples", "pocket.json")
+    with open(path, "w") as f:
+        json.dump(data, f, indent=1)
+
+
 if __name__ == "__main__":
+    example()
     main()

@@ -1,0 +1,1 @@
+# PlungeRough FreeCAD addon: GUI initialisation (nothing yet; see Init.py).

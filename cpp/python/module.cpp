@@ -1,0 +1,103 @@
+// The Python module `plunge` (../shared/CONTRACTS.md section 3): conversions and
+// bindings only. plunge::Error becomes ValueError; long calls release the GIL.
+#include <pybind11/functional.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "plunge/error.hpp"
+#include "plunge/io.hpp"
+#include "plunge/plan.hpp"
+#include "plunge/sequencing.hpp"
+
+namespace py = pybind11;
+using nlohmann::json;
+
+namespace {
+
+// Python objects <-> JSON values (dicts, lists, str, int, float, bool, None).
+json toJson(const py::handle& h, const std::string& where) {
+  if (h.is_none()) return nullptr;
+  if (py::isinstance<py::bool_>(h)) return h.cast<bool>();
+  if (py::isinstance<py::int_>(h)) return h.cast<long long>();
+  if (py::isinstance<py::float_>(h)) {
+    // JSON has no NaN or infinity: name the value here rather than lose it.
+    const double v = h.cast<double>();
+    if (!std::isfinite(v)) throw plunge::Error(where + ": not a finite number");
+    return v;
+  }
+  if (py::isinstance<py::str>(h)) return h.cast<std::string>();
+  if (py::isinstance<py::dict>(h)) {
+    json out = json::object();
+    for (auto item : h.cast<py::dict>()) {
+      if (!py::isinstance<py::str>(item.first)) throw plunge::Error(where + ": keys must be strings");
+      const std::string key = item.first.cast<std::string>();
+      out[key] = toJson(item.second, where + "." + key);
+    }
+    return out;
+  }
+  if (py::isinstance<py::list>(h) || py::isinstance<py::tuple>(h)) {
+    json out = json::array();
+    size_t i = 0;
+    for (auto item : h) out.push_back(toJson(item, where + "[" + std::to_string(i++) + "]"));
+    return out;
+  }
+  // numpy scalars and other numbers
+  if (py::hasattr(h, "__float__")) return toJson(h.attr("__float__")(), where);
+  throw plunge::Error(where + ": unsupported value of type " + std::string(py::str(h.get_type().attr("__name__"))));
+}
+
+py::object fromJson(const json& j) {
+  switch (j.type()) {
+    case json::value_t::object: {
+      py::dict d;
+      for (auto it = j.begin(); it != j.end(); ++it) d[py::str(it.key())] = fromJson(it.value());
+      return std::move(d);
+    }
+    case json::value_t::array: {
+      py::list l;
+      for (const json& v : j) l.append(fromJson(v));
+      return std::move(l);
+    }
+    case json::value_t::string: return py::str(j.get<std::string>());
+    case json::value_t::boolean: return py::bool_(j.get<bool>());
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned: return py::int_(j.get<long long>());
+    case json::value_t::number_float: return py::float_(j.get<double>());
+    default: return py::none();
+  }
+}
+
+py::object planDict(const py::dict& input) {
+  const std::string text = toJson(input, "input").dump();
+  std::string out;
+  {
+    py::gil_scoped_release release;
+    out = plunge::planToJson(plunge::plan(plunge::planInputFromJson(text)));
+  }
+  return fromJson(json::parse(out));
+}
+
+std::vector<int> tourOf(const std::vector<std::pair<double, double>>& points, bool closed,
+                        std::optional<std::pair<double, double>> start) {
+  std::vector<plunge::Vec2> pts;
+  pts.reserve(points.size());
+  for (const auto& p : points) pts.push_back({p.first, p.second});
+  std::optional<plunge::Vec2> s;
+  if (start) s = plunge::Vec2{start->first, start->second};
+  py::gil_scoped_release release;
+  return plunge::tour(pts, closed, s);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(plunge, m) {
+  m.doc() = "Plunge roughing planner: circle packing, gap covering, sequencing and depths";
+  py::register_exception<plunge::Error>(m, "PlanError", PyExc_ValueError);
+  m.def("plan", &planDict, py::arg("input"),
+        "Plan a pocket: input and output dicts as in CONTRACTS.md sections 1 and 2.");
+  m.def("tour", &tourOf, py::arg("points"), py::arg("closed") = true, py::arg("start") = py::none(),
+        "A short visiting order (permutation of range(len(points))) of 2D points.");
+}

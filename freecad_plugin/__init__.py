@@ -1,0 +1,1 @@
+"""PlungeRough's FreeCAD Path operation (App proxy, generator and GUI) lives here."""

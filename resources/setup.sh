@@ -1,0 +1,23 @@
+#!/bin/sh
+# Installs what PlungeRough needs from Debian 12 (only what is missing) and builds it.
+# Idempotent: run it as often as you like; both README commands start with it.
+set -eu
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+
+PACKAGES="cmake g++ make pkg-config
+  libpolyclipping-dev libboost-dev libcgal-dev nlohmann-json3-dev libcli11-dev
+  pybind11-dev python3-dev libgtest-dev python3-pytest python3-shapely"
+
+missing=""
+for p in $PACKAGES; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+  echo "setup: installing$missing"
+  if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=""; fi
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
+fi
+
+cmake -S "$ROOT" -B "$ROOT/build" -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=/usr/bin/python3 >/dev/null
+cmake --build "$ROOT/build" -j"$(nproc)"

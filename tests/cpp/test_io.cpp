@@ -1,0 +1,146 @@
+#include <gtest/gtest.h>
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "plunge/error.hpp"
+#include "plunge/io.hpp"
+
+using namespace plunge;
+using nlohmann::json;
+
+namespace {
+
+json base() {
+  return json::parse(R"({"version": 1, "boundary": [[0,0],[100,0],[100,60],[0,60]],
+    "islands": [[[40,20],[60,20],[50,40]]], "tools": [{"diameter": 12, "id": 4}, {"diameter": 6}],
+    "top_z": 0, "safe_z": 5, "floor": {"z": -10}, "allowance": {"radial": 0.2, "floor": 0.1},
+    "strategy": "packing", "seed": 3})");
+}
+
+std::string parseError(const std::string& text) {
+  try {
+    PlanInput in = planInputFromJson(text);
+    plan(in);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string withChange(const std::string& pointer, const json& value) {
+  json j = base();
+  if (value.is_discarded())
+    j.erase(pointer.substr(1));
+  else
+    j[json::json_pointer(pointer)] = value;
+  return j.dump();
+}
+
+}  // namespace
+
+TEST(Io, ParsesTheContractExample) {
+  const PlanInput in = planInputFromJson(base().dump());
+  EXPECT_EQ(in.boundary.size(), 4u);
+  EXPECT_EQ(in.islands.size(), 1u);
+  ASSERT_EQ(in.tools.size(), 2u);
+  EXPECT_EQ(in.tools[0].id, 4);
+  EXPECT_EQ(in.tools[1].id, 2);  // default: rank by decreasing diameter
+  EXPECT_DOUBLE_EQ(in.floor.z, -10);
+  EXPECT_DOUBLE_EQ(in.radialAllowance, 0.2);
+  EXPECT_EQ(in.seed, 3u);
+}
+
+TEST(Io, BadInputNamesTheProblem) {
+  EXPECT_NE(parseError("{not json").find("invalid JSON"), std::string::npos);
+  EXPECT_NE(parseError("[1,2]").find("expected a JSON object"), std::string::npos);
+  EXPECT_NE(parseError(withChange("/boundary", json::value_t::discarded)).find("boundary: required"), std::string::npos);
+  EXPECT_NE(parseError(withChange("/boundary/1", json::array({1}))).find("boundary[1]"), std::string::npos);
+  EXPECT_NE(parseError(withChange("/boundary/1/0", "x")).find("boundary[1][0]: expected a number"), std::string::npos);
+  EXPECT_NE(parseError(withChange("/tools/0/diameter", 0)).find("diameter must be > 0"), std::string::npos);
+  EXPECT_NE(parseError(withChange("/tools/0/id", -2)).find("tools[0].id"), std::string::npos);
+  EXPECT_NE(parseError(withChange("/tools/0/colour", 1)).find("unknown key 'colour'"), std::string::npos);
+  EXPECT_NE(parseError(withChange("/allowances", 1)).find("unknown key 'allowances'"), std::string::npos);
+  EXPECT_NE(parseError(withChange("/floor", json::object({{"z", 1}, {"brep", "f"}}))).find("exactly one"),
+            std::string::npos);
+  EXPECT_NE(parseError(withChange("/floor", json::value_t::discarded)).find("floor: required"), std::string::npos);
+  EXPECT_NE(parseError(withChange("/version", 2)).find("version"), std::string::npos);
+  EXPECT_NE(parseError(withChange("/seed", -1)).find("seed"), std::string::npos);
+  EXPECT_NE(parseError(withChange("/islands/0", json::array({json::array({1, 1}), json::array({2, 2})})))
+                .find("island 1: needs at least 3 distinct points"),
+            std::string::npos);
+  EXPECT_NE(parseError(withChange("/islands/0/0", json::array({140, 20}))).find("island 1: crosses"), std::string::npos);
+  EXPECT_EQ(parseError(base().dump()), "");
+}
+
+TEST(Io, JsonOutputFollowsTheContract) {
+  PlanInput in = planInputFromJson(base().dump());
+  const Plan p = plan(in);
+  const json out = json::parse(planToJson(p));
+  ASSERT_TRUE(out["plunges"].is_array());
+  EXPECT_EQ(out["plunges"].size(), p.plunges.size());
+  for (const auto& q : out["plunges"])
+    for (const char* k : {"x", "y", "diameter", "tool_id", "z"}) EXPECT_TRUE(q.contains(k)) << k;
+  for (const char* k : {"plunge_count", "per_tool", "region_area", "accessible_area", "covered_area", "coverage",
+                        "travel_length", "planning_seconds"})
+    EXPECT_TRUE(out["stats"].contains(k)) << k;
+  EXPECT_EQ(out["stats"]["plunge_count"].get<int>(), static_cast<int>(p.plunges.size()));
+}
+
+TEST(Io, SvgDrawsEveryPlungeAndALegend) {
+  PlanInput in = planInputFromJson(base().dump());
+  const Plan p = plan(in);
+  const std::string svg = planToSvg(in, p);
+  size_t circles = 0;
+  for (size_t at = svg.find("<circle"); at != std::string::npos; at = svg.find("<circle", at + 1)) ++circles;
+  EXPECT_EQ(circles, p.plunges.size() + p.stats.perTool.size());  // plunges + legend swatches
+  EXPECT_NE(svg.find("coverage"), std::string::npos);
+  EXPECT_NE(svg.find("T4"), std::string::npos);
+  EXPECT_EQ(svg.rfind("</svg>"), svg.size() - 7);
+}
+
+// The G-code parsed back gives the plan: one tool change per tool, one feed
+// plunge per plunge at its depth and position, every rapid at the safe height.
+TEST(Io, GcodeParsesBackToThePlan) {
+  PlanInput in = planInputFromJson(base().dump());
+  const Plan p = plan(in);
+  std::istringstream g(planToGcode(in, p));
+  std::string line;
+  double x = NAN, y = NAN, z = NAN;
+  int tool = -1;
+  std::vector<Plunge> seen;
+  std::vector<int> changes;
+  while (std::getline(g, line)) {
+    if (line.empty() || line[0] == '(') continue;
+    std::istringstream w(line);
+    std::string word;
+    std::map<char, double> v;
+    std::vector<std::string> codes;
+    while (w >> word) {
+      if (word[0] == 'G' || word[0] == 'M') codes.push_back(word);
+      else v[word[0]] = std::stod(word.substr(1));
+    }
+    if (v.count('T')) {
+      tool = static_cast<int>(v['T']);
+      changes.push_back(tool);
+    }
+    const bool rapid = !codes.empty() && codes[0] == "G0", feed = !codes.empty() && codes[0] == "G1";
+    if (v.count('X')) x = v['X'];
+    if (v.count('Y')) y = v['Y'];
+    if (v.count('Z')) z = v['Z'];
+    if (rapid && (v.count('X') || v.count('Y'))) EXPECT_DOUBLE_EQ(z, in.safeZ) << "rapid below the safe height";
+    if (feed) {
+      EXPECT_TRUE(v.count('F'));
+      seen.push_back({x, y, 0, tool, z});
+    }
+  }
+  ASSERT_EQ(seen.size(), p.plunges.size());
+  for (size_t i = 0; i < seen.size(); ++i) {
+    EXPECT_NEAR(seen[i].x, p.plunges[i].x, 1e-4);
+    EXPECT_NEAR(seen[i].y, p.plunges[i].y, 1e-4);
+    EXPECT_NEAR(seen[i].z, p.plunges[i].z, 1e-4);
+    EXPECT_EQ(seen[i].toolId, p.plunges[i].toolId);
+  }
+  EXPECT_EQ(changes.size(), p.stats.perTool.size());
+}

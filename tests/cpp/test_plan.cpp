@@ -1,0 +1,134 @@
+#include <gtest/gtest.h>
+
+#include "plunge/error.hpp"
+#include "plunge/io.hpp"
+#include "plunge/plan.hpp"
+#include "testutil.hpp"
+
+using namespace plunge;
+
+namespace {
+
+PlanInput square() {
+  PlanInput in;
+  in.boundary = {{0, 0}, {120, 0}, {120, 80}, {0, 80}};
+  in.islands = {{{50, 30}, {70, 30}, {60, 50}}};
+  in.tools = {{10, 2, 100}, {20, 1, 100}};
+  in.floor.z = -12;
+  in.floorAllowance = 0.2;
+  in.radialAllowance = 0.3;
+  return in;
+}
+
+std::string planError(PlanInput in) {
+  try {
+    plan(in);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Plan, OrderDepthAndStats) {
+  const Plan p = plan(square());
+  ASSERT_FALSE(p.plunges.empty());
+  // Tools largest first, all plunges of one tool together.
+  EXPECT_EQ(p.plunges.front().toolId, 1);
+  int changes = 0;
+  for (size_t i = 1; i < p.plunges.size(); ++i) {
+    EXPECT_GE(p.plunges[i - 1].diameter, p.plunges[i].diameter);
+    changes += p.plunges[i].toolId != p.plunges[i - 1].toolId;
+  }
+  EXPECT_LE(changes, 1);
+  int counted = 0;
+  for (const ToolCount& t : p.stats.perTool) counted += t.count;
+  EXPECT_EQ(counted, p.stats.plungeCount);
+  EXPECT_EQ(p.stats.plungeCount, static_cast<int>(p.plunges.size()));
+  for (const Plunge& q : p.plunges) EXPECT_DOUBLE_EQ(q.z, -11.8);
+  EXPECT_GE(p.stats.coverage, 0.995);
+  EXPECT_NEAR(p.stats.coverage, p.stats.coveredArea / p.stats.accessibleArea, 1e-12);
+  EXPECT_LT(p.stats.accessibleArea, p.stats.regionArea);
+  double travel = 0;
+  for (size_t i = 1; i < p.plunges.size(); ++i)
+    travel += dist({p.plunges[i - 1].x, p.plunges[i - 1].y}, {p.plunges[i].x, p.plunges[i].y});
+  EXPECT_NEAR(p.stats.travelLength, travel, 1e-9);
+}
+
+TEST(Plan, SameInputSamePlan) {
+  const Plan a = plan(square()), b = plan(square());
+  ASSERT_EQ(a.plunges.size(), b.plunges.size());
+  for (size_t i = 0; i < a.plunges.size(); ++i) {
+    EXPECT_EQ(a.plunges[i].x, b.plunges[i].x);
+    EXPECT_EQ(a.plunges[i].y, b.plunges[i].y);
+    EXPECT_EQ(a.plunges[i].toolId, b.plunges[i].toolId);
+  }
+}
+
+TEST(Plan, RejectsBadNumbers) {
+  PlanInput in = square();
+  in.tools[0].diameter = -3;
+  EXPECT_NE(planError(in).find("diameter must be > 0"), std::string::npos);
+  in = square();
+  in.tools[0].diameter = NAN;
+  EXPECT_NE(planError(in).find("not a finite number"), std::string::npos);
+  in = square();
+  in.tools.clear();
+  EXPECT_NE(planError(in).find("at least one tool"), std::string::npos);
+  in = square();
+  in.tools[0].id = 1;
+  EXPECT_NE(planError(in).find("used twice"), std::string::npos);
+  in = square();
+  in.safeZ = -1;
+  EXPECT_NE(planError(in).find("safe_z"), std::string::npos);
+  in = square();
+  in.floor.z = 3;
+  EXPECT_NE(planError(in).find("below top_z"), std::string::npos);
+  in = square();
+  in.radialAllowance = -0.1;
+  EXPECT_NE(planError(in).find("allowance.radial"), std::string::npos);
+  in = square();
+  in.floorAllowance = INFINITY;
+  EXPECT_NE(planError(in).find("allowance.floor"), std::string::npos);
+  in = square();
+  in.strategy = "spiral";
+  EXPECT_NE(planError(in).find("strategy"), std::string::npos);
+  in = square();
+  in.minCoverage = 1.5;
+  EXPECT_NE(planError(in).find("min_coverage"), std::string::npos);
+}
+
+TEST(Plan, NoToolFits) {
+  PlanInput in = square();
+  in.tools = {{100, 1, 100}, {90, 2, 100}};
+  EXPECT_NE(planError(in).find("no tool fits"), std::string::npos);
+  in = square();
+  in.radialAllowance = 39;  // 80 mm wide pocket, 10 mm tool, 2 x 39 mm allowance
+  EXPECT_NE(planError(in).find("no tool fits"), std::string::npos);
+}
+
+TEST(Plan, ToolThatFitsNowhereGetsNoPlunge) {
+  PlanInput in = square();
+  in.tools.push_back({95, 7, 100});
+  const Plan p = plan(in);
+  for (const Plunge& q : p.plunges) EXPECT_NE(q.toolId, 7);
+  EXPECT_GE(p.stats.coverage, 0.995);
+}
+
+// Every test shape of the suite: no gouge, coverage at least 99.5 %.
+class Shapes : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(Shapes, InvariantsHold) {
+  PlanInput in = planInputFromJson(test::readData(std::string("shapes/") + GetParam() + ".json"));
+  const Plan p = plan(in);
+  std::vector<Loop> loops{in.boundary};
+  loops.insert(loops.end(), in.islands.begin(), in.islands.end());
+  for (const Plunge& q : p.plunges) {
+    EXPECT_TRUE(test::bruteInside(loops, {q.x, q.y}));
+    EXPECT_GE(test::bruteWallDistance(loops, {q.x, q.y}), q.diameter / 2 + in.radialAllowance - 1e-6);
+  }
+  EXPECT_GE(p.stats.coverage, 0.995);
+}
+
+INSTANTIATE_TEST_SUITE_P(TestShapes, Shapes, ::testing::Values("convex", "concave", "islands", "freeform", "neck"));

@@ -1,0 +1,95 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "plunge/error.hpp"
+#include "plunge/region.hpp"
+#include "testutil.hpp"
+
+using namespace plunge;
+
+namespace {
+const Loop kSquare{{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+
+std::string errorOf(const Loop& b, const std::vector<Loop>& islands = {}) {
+  try {
+    Region r(b, islands);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(Region, OrientsLoopsWithMaterialOnTheLeft) {
+  // Boundary given clockwise, island counter-clockwise: both get flipped.
+  const Region r({{0, 0}, {0, 100}, {100, 100}, {100, 0}}, {{{40, 40}, {60, 40}, {60, 60}, {40, 60}}});
+  EXPECT_GT(signedArea(r.loops()[0]), 0);
+  EXPECT_LT(signedArea(r.loops()[1]), 0);
+  EXPECT_DOUBLE_EQ(r.area(), 10000 - 400);
+  for (const Segment& w : r.walls()) {
+    const Vec2 mid = (w.a + w.b) * 0.5;
+    const Vec2 probe = mid + leftNormal(w.b - w.a) * (1e-3 / norm(w.b - w.a));
+    EXPECT_TRUE(r.contains(probe)) << "material must lie left of every wall";
+  }
+}
+
+TEST(Region, ReflexVertices) {
+  // L shape: one reflex corner of the boundary; a square island: four reflex corners.
+  const Region r({{0, 0}, {100, 0}, {100, 50}, {50, 50}, {50, 100}, {0, 100}}, {{{10, 10}, {20, 10}, {20, 20}, {10, 20}}});
+  int reflex = 0;
+  for (const auto& v : r.vertices())
+    if (v.reflex) {
+      ++reflex;
+      const bool expected = (v.p == Vec2{50, 50}) || (v.p.x >= 10 && v.p.x <= 20 && v.p.y >= 10 && v.p.y <= 20);
+      EXPECT_TRUE(expected) << v.p.x << "," << v.p.y;
+    }
+  EXPECT_EQ(reflex, 5);
+}
+
+TEST(Region, QueriesMatchBruteForce) {
+  std::mt19937 rng(11);
+  const Loop outer = test::randomStar(rng, {0, 0}, 60, 100, 40);
+  const std::vector<Loop> islands{test::circleLoop({10, 5}, 12, 30), test::randomStar(rng, {-25, -20}, 6, 10, 9)};
+  const Region r(outer, islands);
+  std::vector<Loop> all{outer};
+  all.insert(all.end(), islands.begin(), islands.end());
+  std::uniform_real_distribution<double> u(-110, 110);
+  for (int i = 0; i < 3000; ++i) {
+    const Vec2 p{u(rng), u(rng)};
+    EXPECT_EQ(r.contains(p), test::bruteInside(all, p));
+    const double d = test::bruteWallDistance(all, p);
+    const double within = 15;
+    const double got = r.wallDistance(p, within);
+    if (d <= within)
+      EXPECT_NEAR(got, d, 1e-12);
+    else
+      EXPECT_GT(got, within);
+    EXPECT_EQ(r.diskFits(p, 5), test::bruteInside(all, p) && d >= 5 - 1e-9);
+  }
+}
+
+TEST(Region, RejectsBadInput) {
+  EXPECT_NE(errorOf({{0, 0}, {1, 0}}).find("at least 3 distinct points"), std::string::npos);
+  EXPECT_NE(errorOf({{0, 0}, {1, 0}, {1, 0}, {0, 0}}).find("at least 3 distinct points"), std::string::npos);
+  EXPECT_NE(errorOf({{0, 0}, {1, 0}, {2, 0}}).find("zero area"), std::string::npos);
+  EXPECT_NE(errorOf({{0, 0}, {20, 0}, {20, 10}, {10, -5}, {0, 10}}).find("self-intersecting"), std::string::npos);
+  EXPECT_NE(errorOf({{0, 0}, {10, 10}, {10, 0}, {0, 10}}).find("zero area"), std::string::npos);  // bow tie
+  EXPECT_NE(errorOf({{0, 0}, {10, 0}, {10, 10}, {10, 5}, {0, 10}}).find("self-intersecting"), std::string::npos);
+  EXPECT_NE(errorOf({{0, 0}, {NAN, 0}, {1, 1}}).find("finite"), std::string::npos);
+  EXPECT_NE(errorOf({{0, 0}, {INFINITY, 0}, {1, 1}}).find("finite"), std::string::npos);
+  EXPECT_NE(errorOf(kSquare, {{{200, 200}, {210, 200}, {210, 210}}}).find("island 1: lies outside the boundary"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kSquare, {{{90, 50}, {110, 50}, {100, 60}}}).find("island 1: crosses"), std::string::npos);
+  EXPECT_NE(errorOf(kSquare, {{{10, 10}, {40, 10}, {40, 40}}, {{{30, 20}, {50, 20}, {50, 30}}}}).find("overlap"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kSquare, {{{10, 10}, {60, 10}, {60, 60}, {10, 60}}, {{{20, 20}, {30, 20}, {30, 30}}}}).find("inside island"),
+            std::string::npos);
+  EXPECT_NE(errorOf(kSquare, {{{10, 10}, {20, 10}, {30, 10}}}).find("island 1: has zero area"), std::string::npos);
+  EXPECT_EQ(errorOf(kSquare, {{{10, 10}, {20, 10}, {20, 20}}}), "");
+}
+
+TEST(Region, AcceptsClosingDuplicateAndRepeatedPoints) {
+  const Region r({{0, 0}, {10, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 0}}, {});
+  EXPECT_EQ(r.loops()[0].size(), 4u);
+}

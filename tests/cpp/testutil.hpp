@@ -1,0 +1,58 @@
+// Shared helpers of the GoogleTest suite: random pockets and brute-force checks.
+#pragma once
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include "plunge/geometry.hpp"
+#include "plunge/region.hpp"
+
+namespace plunge::test {
+
+// A random star-shaped (hence simple) polygon around c with radii in [r0, r1].
+inline Loop randomStar(std::mt19937& rng, Vec2 c, double r0, double r1, int n) {
+  std::uniform_real_distribution<double> rad(r0, r1), jitter(-0.3, 0.3);
+  Loop out;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * M_PI * (i + 0.5 + jitter(rng)) / n;
+    const double r = rad(rng);
+    out.push_back({c.x + r * std::cos(a), c.y + r * std::sin(a)});
+  }
+  return out;
+}
+
+inline Loop circleLoop(Vec2 c, double r, int n) {
+  Loop out;
+  for (int i = 0; i < n; ++i) out.push_back({c.x + r * std::cos(2 * M_PI * i / n), c.y + r * std::sin(2 * M_PI * i / n)});
+  return out;
+}
+
+// Brute force: distance from p to the nearest wall of the loops.
+inline double bruteWallDistance(const std::vector<Loop>& loops, Vec2 p) {
+  double best = INFINITY;
+  for (const Loop& L : loops)
+    for (size_t i = 0; i < L.size(); ++i) best = std::min(best, distanceToSegment({L[i], L[(i + 1) % L.size()]}, p));
+  return best;
+}
+
+// Brute force: even-odd point containment over all loops.
+inline bool bruteInside(const std::vector<Loop>& loops, Vec2 p) {
+  bool in = false;
+  for (const Loop& L : loops)
+    for (size_t i = 0, j = L.size() - 1; i < L.size(); j = i++) {
+      const Vec2 a = L[j], b = L[i];
+      if ((a.y > p.y) != (b.y > p.y) && a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) > p.x) in = !in;
+    }
+  return in;
+}
+
+inline std::string readData(const std::string& rel) {
+  std::ifstream f(std::string(PLUNGE_TEST_DATA) + "/" + rel);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+}  // namespace plunge::test

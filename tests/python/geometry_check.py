@@ -1,0 +1,48 @@
+"""Independent checks of a plan with plain Python and shapely (GEOS), not the planner's code."""
+import math
+
+from shapely.geometry import Point, Polygon
+from shapely.ops import unary_union
+
+
+def wall_distance(loops, x, y):
+    best = math.inf
+    for loop in loops:
+        n = len(loop)
+        for i in range(n):
+            (ax, ay), (bx, by) = loop[i], loop[(i + 1) % n]
+            dx, dy = bx - ax, by - ay
+            l2 = dx * dx + dy * dy
+            t = 0.0 if l2 == 0 else max(0.0, min(1.0, ((x - ax) * dx + (y - ay) * dy) / l2))
+            best = min(best, math.hypot(x - ax - t * dx, y - ay - t * dy))
+    return best
+
+
+def inside(loops, x, y):
+    inside_ = False
+    for loop in loops:
+        n = len(loop)
+        for i in range(n):
+            (ax, ay), (bx, by) = loop[i - 1], loop[i]
+            if (ay > y) != (by > y) and ax + (y - ay) / (by - ay) * (bx - ax) > x:
+                inside_ = not inside_
+    return inside_
+
+
+def assert_no_gouge(data, plan):
+    loops = [data["boundary"]] + data.get("islands", [])
+    radial = data.get("allowance", {}).get("radial", 0.0)
+    for p in plan["plunges"]:
+        assert inside(loops, p["x"], p["y"]), p
+        clearance = wall_distance(loops, p["x"], p["y"])
+        assert clearance >= p["diameter"] / 2 + radial - 1e-6, (p, clearance)
+
+
+def coverage(data, plan):
+    """Covered fraction of the accessible region, measured with GEOS."""
+    pocket = Polygon(data["boundary"], data.get("islands", []))
+    radial = data.get("allowance", {}).get("radial", 0.0)
+    r_min = min(t["diameter"] for t in data["tools"]) / 2
+    accessible = pocket.buffer(-(radial + r_min), resolution=64).buffer(r_min, resolution=64)
+    disks = unary_union([Point(p["x"], p["y"]).buffer(p["diameter"] / 2, resolution=64) for p in plan["plunges"]])
+    return accessible.intersection(disks).area / accessible.area

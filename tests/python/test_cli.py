@@ -1,0 +1,121 @@
+"""The command-line tool on every test shape, and on bad input."""
+import copy
+import json
+import os
+import subprocess
+import xml.etree.ElementTree as ET
+
+import pytest
+
+from conftest import SHAPES
+from geometry_check import assert_no_gouge, coverage
+
+SHAPE_NAMES = ["convex", "concave", "islands", "freeform", "neck"]
+
+
+def load(name):
+    with open(os.path.join(SHAPES, name + ".json")) as f:
+        return json.load(f)
+
+
+def run(cli, data, tmp_path, *extra):
+    src = tmp_path / "in.json"
+    src.write_text(json.dumps(data) if not isinstance(data, str) else data)
+    return subprocess.run([cli, "plan", str(src), *extra], capture_output=True, text=True, timeout=120)
+
+
+@pytest.mark.parametrize("name", SHAPE_NAMES)
+def test_plans_every_shape(cli, tmp_path, name):
+    data = load(name)
+    out, svg, nc = tmp_path / "plan.json", tmp_path / "plan.svg", tmp_path / "plan.nc"
+    res = run(cli, data, tmp_path, "-o", str(out), "--svg", str(svg), "--gcode", str(nc))
+    assert res.returncode == 0, res.stderr
+    assert res.stderr == ""
+    plan = json.loads(out.read_text())
+    stats = plan["stats"]
+    assert stats["plunge_count"] == len(plan["plunges"]) > 0
+    assert sum(t["count"] for t in stats["per_tool"]) == stats["plunge_count"]
+    assert_no_gouge(data, plan)
+    measured = coverage(data, plan)
+    assert measured >= 0.995, measured
+    assert abs(measured - stats["coverage"]) < 2e-3
+    # Tools from the largest down, each tool's plunges together.
+    diameters = [p["diameter"] for p in plan["plunges"]]
+    assert diameters == sorted(diameters, reverse=True)
+    floor = data["floor"]["z"] + data["allowance"]["floor"]
+    assert all(abs(p["z"] - floor) < 1e-9 for p in plan["plunges"])
+    # The picture: one circle per plunge plus one legend swatch per tool.
+    root = ET.parse(svg).getroot()
+    circles = root.findall("{http://www.w3.org/2000/svg}circle")
+    assert len(circles) == len(plan["plunges"]) + len(stats["per_tool"])
+    # The G-code: one feed move per plunge.
+    feeds = [line for line in nc.read_text().splitlines() if line.startswith("G1 ")]
+    assert len(feeds) == len(plan["plunges"])
+
+
+def test_stdout_is_the_default_output(cli, tmp_path):
+    res = run(cli, load("convex"), tmp_path)
+    assert res.returncode == 0
+    assert json.loads(res.stdout)["stats"]["plunge_count"] > 0
+
+
+def test_same_input_same_plan(cli, tmp_path):
+    a = json.loads(run(cli, load("islands"), tmp_path).stdout)
+    b = json.loads(run(cli, load("islands"), tmp_path).stdout)
+    assert a["plunges"] == b["plunges"]
+
+
+def mutate(path, value):
+    data = load("islands")
+    node = data
+    for key in path[:-1]:
+        node = node[key]
+    if value is KeyError:
+        del node[path[-1]]
+    else:
+        node[path[-1]] = value
+    return data
+
+
+BAD = [
+    ("not json", "invalid JSON"),
+    (mutate(["boundary"], [[0, 0], [1, 0]]), "at least 3 distinct points"),
+    (mutate(["boundary"], [[0, 0], [10, 0], [20, 0]]), "zero area"),
+    (mutate(["boundary"], [[0, 0], [200, 0], [200, 120], [100, -50], [0, 120]]), "self-intersecting"),
+    (mutate(["islands"], [[[300, 300], [310, 300], [305, 310]]]), "outside the boundary"),
+    (mutate(["islands"], [[[190, 50], [230, 50], [210, 70]]]), "crosses"),
+    (mutate(["islands"], [[[40, 30], [80, 30], [60, 80]], [[[50, 40], [70, 40], [60, 60]]][0]]), "overlap"),
+    (mutate(["tools"], [{"diameter": -6}]), "diameter must be > 0"),
+    (mutate(["tools"], [{"diameter": 0}]), "diameter must be > 0"),
+    (mutate(["tools"], [{"diameter": 500}]), "no tool fits"),
+    (mutate(["tools"], []), "at least one tool"),
+    (mutate(["tools"], [{"diameter": 6, "id": 1}, {"diameter": 8, "id": 1}]), "used twice"),
+    (mutate(["allowance", "radial"], -1), "allowance.radial"),
+    (mutate(["allowance", "radial"], 70), "no tool fits"),
+    (mutate(["safe_z"], -30), "safe_z"),
+    (mutate(["floor"], {"z": 5}), "below top_z"),
+    (mutate(["floor"], KeyError), "floor: required"),
+    (mutate(["strategy"], "zigzag"), "strategy"),
+    (mutate(["boundary", 1, 0], "x"), "boundary[1][0]"),
+    (mutate(["tools", 0, "diameterr"], 3), "unknown key"),
+    (json.dumps(mutate(["top_z"], 0)).replace('"top_z": 0', '"top_z": 1e999'), "number overflow"),
+]
+
+
+@pytest.mark.parametrize("data,message", BAD, ids=[m for _, m in BAD])
+def test_bad_input_gives_one_clear_line(cli, tmp_path, data, message):
+    res = run(cli, data, tmp_path)
+    assert res.returncode == 2
+    lines = res.stderr.strip().splitlines()
+    assert len(lines) == 1, res.stderr
+    assert message in lines[0]
+    assert res.stdout == ""
+
+
+def test_missing_file_and_bad_usage(cli, tmp_path):
+    res = subprocess.run([cli, "plan", str(tmp_path / "nope.json")], capture_output=True, text=True)
+    assert res.returncode == 2 and len(res.stderr.strip().splitlines()) == 1 and "cannot read" in res.stderr
+    res = subprocess.run([cli], capture_output=True, text=True)
+    assert res.returncode != 0 and len(res.stderr.strip().splitlines()) == 1
+    res = subprocess.run([cli, "plan", "a.json", "--frobnicate"], capture_output=True, text=True)
+    assert res.returncode != 0 and len(res.stderr.strip().splitlines()) == 1

@@ -1,0 +1,74 @@
+"""The pybind11 module under Debian's python3, the interpreter FreeCAD embeds."""
+import json
+import math
+import os
+import sys
+
+import pytest
+
+from conftest import SHAPES
+from geometry_check import assert_no_gouge, coverage
+
+
+def load(name):
+    with open(os.path.join(SHAPES, name + ".json")) as f:
+        return json.load(f)
+
+
+def test_runs_under_debians_python():
+    # FreeCAD 0.20 on Debian 12 embeds /usr/lib/python3.11.
+    assert sys.version_info[:2] == (3, 11)
+    assert sys.executable.startswith("/usr/bin/python3")
+
+
+def test_plan_contract(plunge):
+    data = load("concave")
+    plan = plunge.plan(data)
+    assert set(plan) >= {"plunges", "stats"}
+    assert set(plan["stats"]) >= {"plunge_count", "per_tool", "region_area", "accessible_area", "covered_area",
+                                  "coverage", "travel_length", "planning_seconds"}
+    for p in plan["plunges"]:
+        assert set(p) == {"x", "y", "diameter", "tool_id", "z"}
+    assert_no_gouge(data, plan)
+    assert coverage(data, plan) >= 0.995
+    assert plunge.plan(data)["plunges"] == plan["plunges"]  # deterministic
+
+
+def test_tuples_and_defaults(plunge):
+    plan = plunge.plan({"boundary": ((0, 0), (80, 0), (80, 50), (0, 50)), "tools": [{"diameter": 10}],
+                        "floor": {"z": -5}})
+    assert plan["plunges"] and all(p["tool_id"] == 1 for p in plan["plunges"])
+    assert all(p["z"] == -5 for p in plan["plunges"])
+
+
+@pytest.mark.parametrize("change,message", [
+    ({"boundary": [[0, 0], [1, 0]]}, "at least 3 distinct points"),
+    ({"tools": [{"diameter": float("nan")}]}, "not a finite number"),
+    ({"tools": [{"diameter": float("inf")}]}, "not a finite number"),
+    ({"boundary": [[0, 0], [100, 0], [100, float("nan")], [0, 50]]}, "finite"),
+    ({"tools": "big"}, "tools"),
+    ({"floor": {"z": "low"}}, "floor.z"),
+    ({"floor": {"z": -5}, "strategy": 3}, "strategy"),
+    ({"extra": object()}, "unsupported value"),
+    ({"islands": [[[300, 300], [310, 300], [305, 310]]]}, "outside the boundary"),
+])
+def test_bad_input_raises_value_error(plunge, change, message):
+    data = load("islands")
+    data.update(change)
+    with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
+        plunge.plan(data)
+
+
+def test_non_string_keys(plunge):
+    with pytest.raises(ValueError, match="keys must be strings"):
+        plunge.plan({1: 2})
+
+
+def test_tour(plunge):
+    pts = [(math.cos(k), math.sin(k)) for k in range(30)]
+    order = plunge.tour(pts)
+    assert sorted(order) == list(range(30))
+    assert plunge.tour(pts, closed=False, start=(2, 0))[0] == 0
+    assert plunge.tour([]) == []
+    with pytest.raises(ValueError, match="finite"):
+        plunge.tour([(0, 0), (float("nan"), 1)])
