@@ -259,12 +259,19 @@ class Coverer {
   }
 
  private:
+  struct Chunk {
+    clip::Paths poly;
+    Vec2 lo, hi;
+    double area;
+  };
   struct Piece {
     clip::Paths poly;
     Vec2 lo, hi;
     double area;
     bool pin;  // touches no edge of the accessible region: a free-standing core of material
     bool alive;
+    mutable bool chunked = false;        // chunks computed (empty for small pieces)
+    mutable std::vector<Chunk> chunks;  // a large piece cut into cells, for gainOf
   };
   struct Candidate {
     double gain;
@@ -344,12 +351,47 @@ class Coverer {
     }
   }
 
+  // Uncovered area a disk would cut. Large pieces (long strips along walls) are
+  // cut once into cells, so that each evaluation clips only the cells in reach.
   double gainOf(Vec2 c, double r) const {
-    const clip::Paths disk{clip::diskPath({c, r}, kDiskChord, true)};
+    const clip::Paths disk{clip::diskPath({c, r}, 4 * kDiskChord, true)};  // enough to rank candidates
+    const Vec2 lo{c.x - r, c.y - r}, hi{c.x + r, c.y + r};
+    auto cut = [&](const clip::Paths& poly, double area, Vec2 plo, Vec2 phi) {
+      const bool within = dist(c, plo) <= r && dist(c, phi) <= r && dist(c, {plo.x, phi.y}) <= r &&
+                          dist(c, {phi.x, plo.y}) <= r;
+      return within ? area : clip::area(clip::boolean(poly, disk, ClipperLib::ctIntersection));
+    };
     double g = 0.0;
-    for (int id : piecesNear({c.x - r, c.y - r}, {c.x + r, c.y + r}))
-      g += clip::area(clip::boolean(pieces_[id].poly, disk, ClipperLib::ctIntersection));
+    for (int id : piecesNear(lo, hi)) {
+      const Piece& p = pieces_[id];
+      if (!p.chunked) chunk(p);
+      if (p.chunks.empty()) {
+        g += cut(p.poly, p.area, p.lo, p.hi);
+        continue;
+      }
+      for (const Chunk& k : p.chunks)
+        if (k.lo.x <= hi.x && k.hi.x >= lo.x && k.lo.y <= hi.y && k.hi.y >= lo.y) g += cut(k.poly, k.area, k.lo, k.hi);
+    }
     return g;
+  }
+
+  void chunk(const Piece& p) const {
+    p.chunked = true;
+    size_t vertices = 0;
+    for (const clip::Path& q : p.poly) vertices += q.size();
+    if (vertices <= 300) return;
+    const double cell = 4 * rMax_;
+    for (double y = p.lo.y; y < p.hi.y; y += cell)
+      for (double x = p.lo.x; x < p.hi.x; x += cell) {
+        const clip::Path rect{clip::toInt({x, y}), clip::toInt({x + cell, y}), clip::toInt({x + cell, y + cell}),
+                              clip::toInt({x, y + cell})};
+        Chunk k;
+        k.poly = clip::boolean(p.poly, {rect}, ClipperLib::ctIntersection);
+        if (k.poly.empty()) continue;
+        k.area = clip::area(k.poly);
+        clip::bounds(k.poly, k.lo, k.hi);
+        p.chunks.push_back(std::move(k));
+      }
   }
 
   // --- feasible centres ---------------------------------------------------

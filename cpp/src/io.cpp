@@ -51,7 +51,7 @@ PlanInput planInputFromJson(const std::string& text) {
   if (!j.is_object()) throw Error("input: expected a JSON object");
   onlyKeys(j,
            {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",
-            "min_coverage", "contact_ratio", "start"},
+            "min_coverage", "contact_ratio", "packing_order", "start"},
            "input: ");
   PlanInput in;
   if (j.contains("version") && !(j["version"].is_number_integer() && j["version"].get<long long>() == 1))
@@ -123,6 +123,10 @@ PlanInput planInputFromJson(const std::string& text) {
   }
   if (j.contains("min_coverage")) in.minCoverage = number(j["min_coverage"], "min_coverage");
   if (j.contains("contact_ratio")) in.contactRatio = number(j["contact_ratio"], "contact_ratio");
+  if (j.contains("packing_order")) {
+    if (!j["packing_order"].is_string()) throw Error("packing_order: expected a string");
+    in.packingOrder = j["packing_order"].get<std::string>();
+  }
   if (j.contains("start")) in.start = point(j["start"], "start");
   return in;
 }

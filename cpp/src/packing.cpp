@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numeric>
 #include <set>
+#include <limits>
 #include <tuple>
 
 #include "plunge/error.hpp"
@@ -93,6 +94,7 @@ class Packer {
     seedCandidates();
     while (!queue_.empty()) {
       const int id = std::get<3>(*queue_.begin());
+      if (opt_.order == PackingOrder::Lattice && !hasLattice_) anchorLattice(cands_[id]);
       place(cands_[id].p);
     }
   }
@@ -107,12 +109,53 @@ class Packer {
     bool alive;
   };
   // Max hole degree first; ties by lowest y then x, so equal-degree placements grow
-  // row by row into a lattice; then creation order.
+  // row by row; then creation order.
   using Key = std::tuple<long long, double, double, int>;
 
   Key keyOf(int id) const {
     const Candidate& c = cands_[id];
-    return {-std::llround(holeDegree(c.dMin, r_) * 1e9), c.p.y, c.p.x, id};
+    const long long lambda = std::llround(holeDegree(c.dMin, r_) * 1e9);
+    if (opt_.order == PackingOrder::HoleDegree || !hasLattice_) return {-lambda * 1000, c.p.y, c.p.x, id};
+    // Lattice order: placements on the lattice first, then by hole degree, then
+    // by distance to the lattice (in steps of 0.5 % of the contact radius).
+    const double steps = std::floor(latticeDistance(c.p) / (0.005 * rho_));
+    const long long step = static_cast<long long>(std::min(steps, 999.0));
+    return {(step > 0 ? (1LL << 50) : 0) - lambda * 1000 + step, c.p.y, c.p.x, id};
+  }
+
+  // Distance to the nearest point of the hexagonal lattice of spacing 2 rho
+  // anchored at the first circle, rows along latDir_.
+  double latticeDistance(Vec2 p) const {
+    const Vec2 d = p - latOrigin_;
+    const double x = dot(d, latDir_), y = dot(d, leftNormal(latDir_));
+    const double h = std::sqrt(3.0) * rho_;
+    const double row = std::round(y / h);
+    double best = std::numeric_limits<double>::infinity();
+    for (double j = row - 1; j <= row + 1; ++j) {
+      const double shift = j * rho_;  // odd rows sit in the pockets of even ones
+      const double col = std::round((x - shift) / (2 * rho_));
+      for (double i = col - 1; i <= col + 1; ++i) best = std::min(best, std::hypot(x - shift - 2 * rho_ * i, y - j * h));
+    }
+    return best;
+  }
+
+  // The lattice follows the longer wall the first circle touches.
+  void anchorLattice(const Candidate& first) {
+    hasLattice_ = true;
+    latOrigin_ = first.p;
+    latDir_ = {1, 0};
+    double longest = 0;
+    for (const Site* g : {&first.g1, &first.g2})
+      if (g->kind == Site::Wall) {
+        const Segment& w = region_.walls()[g->index];
+        if (dist(w.a, w.b) > longest) {
+          longest = dist(w.a, w.b);
+          latDir_ = (w.b - w.a) * (1.0 / longest);
+        }
+      }
+    std::set<Key> rekeyed;
+    for (const Key& k : queue_) rekeyed.insert(keyOf(std::get<3>(k)));
+    queue_.swap(rekeyed);
   }
 
   Circle locus(const Site& s) const {
@@ -270,6 +313,8 @@ class Packer {
   PackedDisk proto_;  // the circle of this phase
   int tool_ = 0;
   double r_ = 0, c_ = 0, rho_ = 0, maxReach_ = 0;  // maxReach_: largest radius placed
+  bool hasLattice_ = false;  // anchored at the first circle of the largest tool
+  Vec2 latOrigin_, latDir_;
   std::vector<Candidate> cands_;
   bgi::rtree<PointValue, bgi::rstar<16>> candIndex_;
   bgi::rtree<PointValue, bgi::rstar<16>> diskIndex_;

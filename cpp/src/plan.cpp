@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <future>
 #include <cmath>
 #include <set>
 
@@ -54,6 +55,8 @@ void validate(PlanInput& in) {
     throw Error("floor: sculptured floors (expression, brep) are not supported yet; use {\"z\": ...}");
   }
   if (in.strategy != "packing") throw Error("strategy: unknown strategy '" + in.strategy + "' (use \"packing\")");
+  if (in.packingOrder != "auto" && in.packingOrder != "hole_degree" && in.packingOrder != "lattice")
+    throw Error("packing_order: unknown order '" + in.packingOrder + "' (use \"auto\", \"hole_degree\" or \"lattice\")");
   requireFinite(in.minCoverage, "min_coverage");
   if (!(in.minCoverage > 0.0 && in.minCoverage <= 1.0)) throw Error("min_coverage must be in (0, 1]");
   requireFinite(in.contactRatio, "contact_ratio");
@@ -80,15 +83,29 @@ Plan plan(PlanInput in) {
                 ") with the radial allowance does not fit anywhere");
   }
 
-  PackingOptions po;
-  po.allowance = in.radialAllowance;
-  po.contactRatio = in.contactRatio;
-  const std::vector<PackedDisk> packed = packMaxHoleDegree(region, radii, po);
-
-  CoveringOptions co;
-  co.allowance = in.radialAllowance;
-  co.minCoverage = in.minCoverage;
-  const CoverResult cover = coverRegion(region, radii, packed, co);
+  // Pack and cover with each packing order asked for (in parallel: "auto" tries
+  // both) and keep the plan with the fewest plunges.
+  auto packAndCover = [&](PackingOrder order) {
+    PackingOptions po;
+    po.allowance = in.radialAllowance;
+    po.contactRatio = in.contactRatio;
+    po.order = order;
+    CoveringOptions co;
+    co.allowance = in.radialAllowance;
+    co.minCoverage = in.minCoverage;
+    return coverRegion(region, radii, packMaxHoleDegree(region, radii, po), co);
+  };
+  CoverResult cover;
+  if (in.packingOrder == "hole_degree") {
+    cover = packAndCover(PackingOrder::HoleDegree);
+  } else if (in.packingOrder == "lattice") {
+    cover = packAndCover(PackingOrder::Lattice);
+  } else {
+    auto lattice = std::async(std::launch::async, packAndCover, PackingOrder::Lattice);
+    cover = packAndCover(PackingOrder::HoleDegree);
+    CoverResult other = lattice.get();
+    if (other.disks.size() < cover.disks.size()) cover = std::move(other);
+  }
 
   // Execution order: tools largest first, each tool's plunges as a short open path
   // starting nearest to where the previous tool ended.

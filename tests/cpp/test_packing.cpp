@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <tuple>
 
 #include "plunge/error.hpp"
 #include "plunge/packing.hpp"
@@ -133,10 +134,10 @@ int wallContacts(const std::vector<Loop>& loops, Vec2 c, double clearance) {
 
 }  // namespace
 
-class PackingProperties : public ::testing::TestWithParam<double> {};
+class PackingProperties : public ::testing::TestWithParam<std::tuple<double, PackingOrder>> {};
 
 TEST_P(PackingProperties, RandomPockets) {
-  const double ratio = GetParam();
+  const double ratio = std::get<0>(GetParam());
   std::mt19937 rng(2024);
   const std::vector<double> radii{9, 5, 2.5};
   for (int trial = 0; trial < 12; ++trial) {
@@ -146,6 +147,7 @@ TEST_P(PackingProperties, RandomPockets) {
     PackingOptions opt;
     opt.contactRatio = ratio;
     opt.allowance = allowance;
+    opt.order = std::get<1>(GetParam());
     const auto disks = packMaxHoleDegree(region, radii, opt);
     ASSERT_FALSE(disks.empty());
     const auto loops = pk.all();
@@ -184,7 +186,29 @@ TEST_P(PackingProperties, RandomPockets) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(ContactRatios, PackingProperties, ::testing::Values(1.0, 0.86));
+INSTANTIATE_TEST_SUITE_P(RatiosAndOrders, PackingProperties,
+                         ::testing::Combine(::testing::Values(1.0, 0.86),
+                                            ::testing::Values(PackingOrder::HoleDegree, PackingOrder::Lattice)));
+
+// The lattice order keeps the interior one hexagonal lattice even around islands:
+// almost every circle away from the walls touches six others.
+TEST(Packing, LatticeOrderGivesAHexagonalInterior) {
+  const Region region({{0, 0}, {300, 0}, {300, 200}, {0, 200}},
+                      {test::circleLoop({90, 70}, 20, 60), test::circleLoop({210, 130}, 20, 60)});
+  PackingOptions opt;
+  opt.order = PackingOrder::Lattice;
+  const auto d = packMaxHoleDegree(region, {10}, opt);
+  int interior = 0, six = 0;
+  for (const PackedDisk& a : d) {
+    if (region.wallDistance(a.center, 40) < 40) continue;
+    ++interior;
+    int touching = 0;
+    for (const PackedDisk& b : d) touching += &a != &b && std::fabs(dist(a.center, b.center) - 17.2) < 0.05;
+    six += touching == 6;
+  }
+  EXPECT_GT(interior, 30);
+  EXPECT_GE(six, 0.95 * interior);
+}
 
 TEST(Packing, Deterministic) {
   std::mt19937 rng(5);

@@ -21,6 +21,18 @@ struct PackedDisk {
   int tool = 0;                // index into the radii given to packMaxHoleDegree
 };
 
+// Which corner placement comes next.
+enum class PackingOrder {
+  // The thesis: maximum hole degree, ties by lowest y then x.
+  HoleDegree,
+  // Placements on one hexagonal lattice (spacing 2 x contact radius, anchored at
+  // the first circle and aligned with its longer wall) first, then maximum hole
+  // degree. Fronts growing around islands stay in phase, so the interior stays
+  // the thinnest covering lattice instead of breaking into patches whose holes
+  // each cost a gap plunge.
+  Lattice,
+};
+
 struct PackingOptions {
   // Circle-to-circle tangency is taken at contactRatio x radius. 1 is the thesis
   // (disjoint disks); sqrt(3)/2 makes equal disks meet at the spacing of the
@@ -29,6 +41,7 @@ struct PackingOptions {
   double contactRatio = 0.86;
   // Radial allowance: every disk keeps radius + allowance from the walls.
   double allowance = 0.0;
+  PackingOrder order = PackingOrder::HoleDegree;
 };
 
 

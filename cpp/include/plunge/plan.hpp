@@ -38,6 +38,8 @@ struct PlanInput {
   // Extensions beyond the contract (all optional in JSON):
   double minCoverage = 0.996;  // "min_coverage": stop covering wall material here
   double contactRatio = 0.86;  // "contact_ratio": packing tangency radius / tool radius
+  // "packing_order": "hole_degree" (the thesis), "lattice", or "auto": both, keep the better plan.
+  std::string packingOrder = "auto";
   std::optional<Vec2> start;   // "start": where the machine starts (default: first boundary point)
 };
 
