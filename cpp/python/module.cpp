@@ -81,14 +81,18 @@ py::object planDict(const py::dict& input) {
 }
 
 std::vector<int> tourOf(const std::vector<std::pair<double, double>>& points, bool closed,
-                        std::optional<std::pair<double, double>> start) {
+                        std::optional<std::pair<double, double>> start, const std::string& method,
+                        std::uint64_t seed) {
   std::vector<plunge::Vec2> pts;
   pts.reserve(points.size());
   for (const auto& p : points) pts.push_back({p.first, p.second});
   std::optional<plunge::Vec2> s;
   if (start) s = plunge::Vec2{start->first, start->second};
+  plunge::TourOptions opt;
+  opt.method = plunge::tourMethodFromName(method);
+  opt.seed = seed;
   py::gil_scoped_release release;
-  return plunge::tour(pts, closed, s);
+  return plunge::tour(pts, closed, s, opt);
 }
 
 }  // namespace
@@ -99,5 +103,7 @@ PYBIND11_MODULE(plunge, m) {
   m.def("plan", &planDict, py::arg("input"),
         "Plan a pocket: input and output dicts as in CONTRACTS.md sections 1 and 2.");
   m.def("tour", &tourOf, py::arg("points"), py::arg("closed") = true, py::arg("start") = py::none(),
-        "A short visiting order (permutation of range(len(points))) of 2D points.");
+        py::arg("method") = "local_search", py::arg("seed") = 0,
+        "A short visiting order (permutation of range(len(points))) of 2D points; method is "
+        "\"local_search\" (default) or \"annealing\" (the thesis).");
 }

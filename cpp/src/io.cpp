@@ -51,7 +51,7 @@ PlanInput planInputFromJson(const std::string& text) {
   if (!j.is_object()) throw Error("input: expected a JSON object");
   onlyKeys(j,
            {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",
-            "min_coverage", "contact_ratio", "packing_order", "start"},
+            "min_coverage", "contact_ratio", "packing_order", "sequencing", "start"},
            "input: ");
   PlanInput in;
   if (j.contains("version") && !(j["version"].is_number_integer() && j["version"].get<long long>() == 1))
@@ -127,6 +127,10 @@ PlanInput planInputFromJson(const std::string& text) {
     if (!j["packing_order"].is_string()) throw Error("packing_order: expected a string");
     in.packingOrder = j["packing_order"].get<std::string>();
   }
+  if (j.contains("sequencing")) {
+    if (!j["sequencing"].is_string()) throw Error("sequencing: expected a string");
+    in.sequencing = j["sequencing"].get<std::string>();
+  }
   if (j.contains("start")) in.start = point(j["start"], "start");
   return in;
 }
@@ -154,6 +158,8 @@ std::string planToJson(const Plan& plan) {
 namespace {
 
 const char* kPalette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22"};
+// Darker shades of the same hues for the tool paths drawn over the disks.
+const char* kPathPalette[] = {"#0b3c61", "#a34f00", "#13561a", "#4b2a6e", "#4a2c25", "#8c2a73", "#0b6570", "#66660f"};
 
 std::string pathData(const Polygons& loops) {
   std::ostringstream s;
@@ -202,7 +208,7 @@ std::string planToSvg(const PlanInput& input, const Plan& plan) {
   }
   // Tool paths: one polyline per tool, in execution order.
   for (const ToolCount& t : plan.stats.perTool) {
-    s << "<polyline fill=\"none\" stroke=\"" << kPalette[colour[t.toolId] % 8] << "\" stroke-width=\"" << 1.5 * sw
+    s << "<polyline fill=\"none\" stroke=\"" << kPathPalette[colour[t.toolId] % 8] << "\" stroke-width=\"" << 1.5 * sw
       << "\" stroke-opacity=\"0.9\" points=\"";
     for (const Plunge& p : plan.plunges)
       if (p.toolId == t.toolId) s << p.x << "," << -p.y << " ";

@@ -61,6 +61,7 @@ void validate(PlanInput& in) {
   if (!(in.minCoverage > 0.0 && in.minCoverage <= 1.0)) throw Error("min_coverage must be in (0, 1]");
   requireFinite(in.contactRatio, "contact_ratio");
   if (!(in.contactRatio >= 0.5 && in.contactRatio <= 1.0)) throw Error("contact_ratio must be in [0.5, 1]");
+  tourMethodFromName(in.sequencing);  // throws for an unknown method
   if (in.start) {
     requireFinite(in.start->x, "start.x");
     requireFinite(in.start->y, "start.y");
@@ -109,14 +110,17 @@ Plan plan(PlanInput in) {
 
   // Execution order: tools largest first, each tool's plunges as a short open path
   // starting nearest to where the previous tool ended.
-  Vec2 at = in.start ? *in.start : region.loops()[0][0];
+  Vec2 at = in.start ? *in.start : in.boundary.front();
+  TourOptions to;
+  to.method = tourMethodFromName(in.sequencing);
+  to.seed = in.seed;
   const double zStop = in.floor.z + in.floorAllowance;
   for (size_t t = 0; t < in.tools.size(); ++t) {
     std::vector<Vec2> pts;
     for (const CoverDisk& d : cover.disks)
       if (d.tool == static_cast<int>(t)) pts.push_back(d.center);
     if (pts.empty()) continue;
-    for (int i : tour(pts, false, at)) {
+    for (int i : tour(pts, false, at, to)) {
       const Vec2 p = pts[i];
       if (!out.plunges.empty()) out.stats.travelLength += dist({out.plunges.back().x, out.plunges.back().y}, p);
       out.plunges.push_back({p.x, p.y, in.tools[t].diameter, in.tools[t].id, zStop});

@@ -1,6 +1,7 @@
 """The command-line tool on every test shape, and on bad input."""
 import copy
 import json
+import math
 import os
 import subprocess
 import xml.etree.ElementTree as ET
@@ -51,6 +52,25 @@ def test_plans_every_shape(cli, tmp_path, name):
     # The G-code: one feed move per plunge.
     feeds = [line for line in nc.read_text().splitlines() if line.startswith("G1 ")]
     assert len(feeds) == len(plan["plunges"])
+
+
+def test_tool_paths_start_where_they_should(cli, tmp_path):
+    data = load("islands")
+    data["start"] = [200, 120]
+    plan = json.loads(run(cli, data, tmp_path).stdout)
+    plunges = plan["plunges"]
+    first_tool = [p for p in plunges if p["tool_id"] == plunges[0]["tool_id"]]
+    nearest = min(first_tool, key=lambda p: math.dist((p["x"], p["y"]), (200, 120)))
+    assert plunges[0] == nearest
+    # Each later tool starts at its plunge nearest to where the previous tool ended.
+    for i in range(1, len(plunges)):
+        if plunges[i]["tool_id"] != plunges[i - 1]["tool_id"]:
+            same = [p for p in plunges if p["tool_id"] == plunges[i]["tool_id"]]
+            end = (plunges[i - 1]["x"], plunges[i - 1]["y"])
+            assert plunges[i] == min(same, key=lambda p: math.dist((p["x"], p["y"]), end))
+    travel = sum(math.dist((plunges[i - 1]["x"], plunges[i - 1]["y"]), (plunges[i]["x"], plunges[i]["y"]))
+                 for i in range(1, len(plunges)))
+    assert abs(travel - plan["stats"]["travel_length"]) < 1e-6
 
 
 def test_stdout_is_the_default_output(cli, tmp_path):

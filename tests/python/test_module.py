@@ -72,3 +72,34 @@ def test_tour(plunge):
     assert plunge.tour([]) == []
     with pytest.raises(ValueError, match="finite"):
         plunge.tour([(0, 0), (float("nan"), 1)])
+    with pytest.raises(ValueError, match="unknown method"):
+        plunge.tour(pts, method="genetic")
+
+
+def test_tour_methods_and_seed(plunge):
+    import random
+    rng = random.Random(5)
+    pts = [(rng.uniform(0, 50), rng.uniform(0, 50)) for _ in range(300)]
+
+    def length(order):
+        return sum(math.dist(pts[order[i - 1]], pts[order[i]]) for i in range(len(order)))
+
+    local = plunge.tour(pts, method="local_search", seed=3)
+    annealed = plunge.tour(pts, method="annealing", seed=3)
+    assert sorted(local) == sorted(annealed) == list(range(300))
+    assert plunge.tour(pts, method="annealing", seed=3) == annealed
+    # Both far below a random order (about 0.52 * n * side for uniform points).
+    assert length(local) < 0.2 * length(list(range(300)))
+    assert length(annealed) < 0.25 * length(list(range(300)))
+
+
+def test_plan_sequencing_option(plunge):
+    data = load("convex")
+    data["sequencing"] = "annealing"
+    annealed = plunge.plan(data)
+    default = plunge.plan(load("convex"))
+    assert len(annealed["plunges"]) == len(default["plunges"])
+    assert annealed["stats"]["travel_length"] > 0
+    data["sequencing"] = "ants"
+    with pytest.raises(ValueError, match="sequencing"):
+        plunge.plan(data)

@@ -41,6 +41,7 @@ struct PlanInput {
   // "packing_order": "hole_degree" (the thesis), "lattice", or "auto": both, keep the better plan.
   std::string packingOrder = "auto";
   std::optional<Vec2> start;   // "start": where the machine starts (default: first boundary point)
+  std::string sequencing = "local_search";  // "sequencing": or "annealing" (the thesis)
 };
 
 struct Plunge {

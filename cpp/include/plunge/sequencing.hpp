@@ -1,16 +1,40 @@
 // Plunge sequencing: a short visiting order of points (thesis section 4.3.1).
+//
+// Default: greedy-edge construction over k-nearest-neighbour candidate lists,
+// improved by 2-opt and Or-opt moves (don't-look bits), then iterated local
+// search with local double-bridge kicks. The thesis's simulated annealing
+// (acceptance rule 4.81, geometric cooling) is available to compare.
+// Every random choice comes from the seed: same points and seed, same order.
 #pragma once
+#include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "plunge/geometry.hpp"
 
 namespace plunge {
 
+enum class TourMethod {
+  LocalSearch,  // construction + 2-opt/Or-opt + iterated local search (default)
+  Annealing,    // the thesis: simulated annealing on 2-opt moves
+};
+
+// "local_search" or "annealing"; throws plunge::Error for anything else.
+TourMethod tourMethodFromName(const std::string& name);
+
+struct TourOptions {
+  TourMethod method = TourMethod::LocalSearch;
+  std::uint64_t seed = 0;
+  // Iterated-local-search kicks; -1: chosen from the number of points.
+  long long kicks = -1;
+};
+
 // A permutation of the point indices making the tour short. closed = false
 // gives an open path; with `start`, it begins at the point nearest to start.
+// Throws plunge::Error for non-finite coordinates.
 std::vector<int> tour(const std::vector<Vec2>& points, bool closed = true,
-                      std::optional<Vec2> start = std::nullopt);
+                      std::optional<Vec2> start = std::nullopt, const TourOptions& options = {});
 
 double tourLength(const std::vector<Vec2>& points, const std::vector<int>& order, bool closed);
 
