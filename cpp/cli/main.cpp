@@ -49,6 +49,9 @@ int main(int argc, char** argv) {
   }
   try {
     plunge::PlanInput in = plunge::planInputFromJson(readFile(input));
+    // A relative floor.brep is next to the input file.
+    const size_t slash = input.find_last_of('/');
+    in.baseDir = slash == std::string::npos ? "." : input.substr(0, slash);
     const plunge::Plan plan = plunge::plan(in);
     writeFile(output, plunge::planToJson(plan));
     if (!svg.empty()) writeFile(svg, plunge::planToSvg(in, plan));

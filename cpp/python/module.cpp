@@ -9,6 +9,7 @@
 
 #include "plunge/error.hpp"
 #include "plunge/io.hpp"
+#include "plunge/optimizer.hpp"
 #include "plunge/plan.hpp"
 #include "plunge/sequencing.hpp"
 
@@ -95,6 +96,28 @@ std::vector<int> tourOf(const std::vector<std::pair<double, double>>& points, bo
   return plunge::tour(pts, closed, s, opt);
 }
 
+py::tuple asTuple(const std::vector<double>& x) {
+  py::tuple t(x.size());
+  for (size_t i = 0; i < x.size(); ++i) t[i] = x[i];
+  return t;
+}
+
+plunge::OptimizeResult optimizePy(const py::function& f, const std::vector<std::pair<double, double>>& bounds,
+                                  const std::string& goal) {
+  if (goal != "min" && goal != "max") throw plunge::Error("optimize: goal must be \"min\" or \"max\"");
+  const size_t d = bounds.size();
+  // The callable runs Python code: the GIL stays held.
+  auto call = [&](const double* x) {
+    py::object v = d == 1 ? f(x[0]) : f(x[0], x[1]);
+    try {
+      return v.cast<double>();
+    } catch (const py::cast_error&) {
+      throw plunge::Error("optimize: the function must return a float");
+    }
+  };
+  return plunge::optimize(call, bounds, goal == "max" ? plunge::Goal::Maximize : plunge::Goal::Minimize);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(plunge, m) {
@@ -102,6 +125,21 @@ PYBIND11_MODULE(plunge, m) {
   py::register_exception<plunge::Error>(m, "PlanError", PyExc_ValueError);
   m.def("plan", &planDict, py::arg("input"),
         "Plan a pocket: input and output dicts as in CONTRACTS.md sections 1 and 2.");
+  py::class_<plunge::OptimizeResult>(m, "Result", "Global optimum found by plunge.optimize")
+      .def_property_readonly("x", [](const plunge::OptimizeResult& r) { return asTuple(r.x); })
+      .def_readonly("value", &plunge::OptimizeResult::value)
+      .def_property_readonly("locals",
+                             [](const plunge::OptimizeResult& r) {
+                               py::list l;
+                               for (const auto& o : r.locals) l.append(py::make_tuple(asTuple(o.x), o.value));
+                               return l;
+                             })
+      .def_readonly("evaluations", &plunge::OptimizeResult::evaluations)
+      .def("__repr__", [](const plunge::OptimizeResult& r) {
+        return "Result(x=" + std::string(py::str(asTuple(r.x))) + ", value=" + std::to_string(r.value) + ")";
+      });
+  m.def("optimize", &optimizePy, py::arg("f"), py::arg("bounds"), py::arg("goal") = "min",
+        "Global optimum of f(x) or f(x, y) on a box [(a, b)] or [(a, b), (c, d)] (thesis chapter 3).");
   m.def("tour", &tourOf, py::arg("points"), py::arg("closed") = true, py::arg("start") = py::none(),
         py::arg("method") = "local_search", py::arg("seed") = 0,
         "A short visiting order (permutation of range(len(points))) of 2D points; method is "

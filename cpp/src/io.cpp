@@ -68,7 +68,7 @@ PlanInput planInputFromJson(const std::string& text) {
   for (size_t i = 0; i < ts.size(); ++i) {
     const std::string name = "tools[" + std::to_string(i) + "]";
     if (!ts[i].is_object()) throw Error(name + ": expected an object with a diameter");
-    onlyKeys(ts[i], {"diameter", "id", "feed"}, name + ": ");
+    onlyKeys(ts[i], {"diameter", "id", "feed", "shape", "corner_radius"}, name + ": ");
     if (!ts[i].contains("diameter")) throw Error(name + ".diameter: required");
     Tool t;
     t.diameter = number(ts[i]["diameter"], name + ".diameter");
@@ -80,6 +80,15 @@ PlanInput planInputFromJson(const std::string& text) {
       t.id = ts[i]["id"].get<int>();
     }
     if (ts[i].contains("feed")) t.feed = number(ts[i]["feed"], name + ".feed");
+    if (ts[i].contains("shape")) {
+      const json& sh = ts[i]["shape"];
+      const std::string v = sh.is_string() ? sh.get<std::string>() : "";
+      if (v == "flat") t.shape = CutterShape::Flat;
+      else if (v == "ball") t.shape = CutterShape::Ball;
+      else if (v == "bull") t.shape = CutterShape::Bull;
+      else throw Error(name + ".shape: expected \"flat\", \"ball\" or \"bull\"");
+    }
+    if (ts[i].contains("corner_radius")) t.cornerRadius = number(ts[i]["corner_radius"], name + ".corner_radius");
     in.tools.push_back(t);
   }
   // Default tool numbers: 1, 2, ... by decreasing diameter.
@@ -183,7 +192,7 @@ std::string planToSvg(const PlanInput& input, const Plan& plan) {
   const double size = std::max(w, h);
   const double margin = 0.04 * size;
   const double sw = size / 900.0;  // stroke width
-  const double legendH = 0.05 * size * (2 + plan.stats.perTool.size());
+  const double legendH = 0.05 * size * (3 + plan.stats.perTool.size());
   const double vx = lo.x - margin, vy = -hi.y - margin - legendH, vw = w + 2 * margin, vh = h + 2 * margin + legendH;
   std::ostringstream s;
   s << std::fixed << std::setprecision(3);
@@ -216,21 +225,46 @@ std::string planToSvg(const PlanInput& input, const Plan& plan) {
   }
   if (!plan.uncovered.empty())
     s << "<path d=\"" << pathData(plan.uncovered) << "\" fill=\"#e00000\" fill-rule=\"nonzero\" stroke=\"none\"/>\n";
+  // Depths over a sculptured floor: a dot at each plunge, dark (deep) to light (high).
+  double zLo = INFINITY, zHi = -INFINITY;
+  for (const Plunge& p : plan.plunges) {
+    zLo = std::min(zLo, p.z);
+    zHi = std::max(zHi, p.z);
+  }
+  const bool depthDots = !plan.plunges.empty() && zHi - zLo > 1e-9;
+  auto depthColour = [&](double z) {
+    const double t = (z - zLo) / (zHi - zLo);
+    std::ostringstream c;
+    c << "rgb(" << static_cast<int>(30 + 225 * t) << "," << static_cast<int>(20 + 200 * t) << ","
+      << static_cast<int>(90 + 40 * (1 - t)) << ")";
+    return c.str();
+  };
+  if (depthDots)
+    for (const Plunge& p : plan.plunges)
+      s << "<rect x=\"" << p.x - 0.12 * p.diameter << "\" y=\"" << -p.y - 0.12 * p.diameter << "\" width=\""
+        << 0.24 * p.diameter << "\" height=\"" << 0.24 * p.diameter << "\" fill=\"" << depthColour(p.z) << "\"/>\n";
   // Legend.
   const double fs = 0.032 * size;
   double y = -hi.y - legendH + fs * 0.5;
   s << std::setprecision(2);
   s << "<text x=\"" << lo.x << "\" y=\"" << y + fs << "\" font-family=\"sans-serif\" font-size=\"" << fs << "\">"
-    << plan.stats.plungeCount << " plunges, coverage " << 100.0 * plan.stats.coverage << " % of the accessible area"
-    << " (uncovered in red), travel " << plan.stats.travelLength << " mm</text>\n";
+    << plan.stats.plungeCount << " plunges, " << 100.0 * plan.stats.coverage << " % covered (red: left), travel "
+    << plan.stats.travelLength << " mm</text>\n";
   y += 1.4 * fs;
   for (const ToolCount& t : plan.stats.perTool) {
     const char* c = kPalette[colour[t.toolId] % 8];
     s << "<circle cx=\"" << lo.x + fs * 0.5 << "\" cy=\"" << y + fs * 0.6 << "\" r=\"" << fs * 0.45 << "\" fill=\"" << c
       << "\" fill-opacity=\"0.5\" stroke=\"" << c << "\"  stroke-width=\"" << sw << "\"/>\n";
     s << "<text x=\"" << lo.x + fs * 1.4 << "\" y=\"" << y + fs << "\" font-family=\"sans-serif\" font-size=\"" << fs
-      << "\">T" << t.toolId << "  diameter " << t.diameter << " mm: " << t.count << " plunges</text>\n";
+      << "\">T" << t.toolId << " D" << t.diameter << ": " << t.count << " plunges</text>\n";
     y += 1.4 * fs;
+  }
+  if (depthDots) {
+    s << "<rect x=\"" << lo.x << "\" y=\"" << y + 0.2 * fs << "\" width=\"" << fs << "\" height=\"" << 0.8 * fs
+      << "\" fill=\"" << depthColour(zLo) << "\"/><rect x=\"" << lo.x + fs << "\" y=\"" << y + 0.2 * fs
+      << "\" width=\"" << fs << "\" height=\"" << 0.8 * fs << "\" fill=\"" << depthColour(zHi) << "\"/>\n";
+    s << "<text x=\"" << lo.x + fs * 2.4 << "\" y=\"" << y + fs << "\" font-family=\"sans-serif\" font-size=\"" << fs
+      << "\">stop height " << zLo << " (dark) to " << zHi << " mm</text>\n";
   }
   s << "</svg>\n";
   return s.str();

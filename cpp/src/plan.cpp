@@ -5,9 +5,12 @@
 #include <future>
 #include <cmath>
 #include <set>
+#include <sstream>
 
 #include "plunge/covering.hpp"
+#include "plunge/depth.hpp"
 #include "plunge/error.hpp"
+#include "plunge/floor.hpp"
 #include "plunge/packing.hpp"
 #include "plunge/polygon.hpp"
 #include "plunge/sequencing.hpp"
@@ -37,6 +40,13 @@ void validate(PlanInput& in) {
     if (!ids.insert(t.id).second) throw Error(name + ".id " + std::to_string(t.id) + " is used twice");
     if (!diameters.insert(t.diameter).second)
       throw Error(name + ".diameter " + std::to_string(t.diameter) + " is given twice");
+    if (t.shape == CutterShape::Bull) {
+      requireFinite(t.cornerRadius, name + ".corner_radius");
+      if (!(t.cornerRadius > 0 && t.cornerRadius <= t.diameter / 2))
+        throw Error(name + ".corner_radius must be > 0 and at most half the diameter");
+    } else if (t.cornerRadius != 0.0) {
+      throw Error(name + ".corner_radius is for bull-nose tools (\"shape\": \"bull\")");
+    }
   }
   std::stable_sort(in.tools.begin(), in.tools.end(),
                    [](const Tool& a, const Tool& b) { return a.diameter > b.diameter; });
@@ -51,8 +61,10 @@ void validate(PlanInput& in) {
     requireFinite(in.floor.z, "floor.z");
     if (in.floor.z + in.floorAllowance >= in.topZ)
       throw Error("floor.z plus the floor allowance must be below top_z");
-  } else {
-    throw Error("floor: sculptured floors (expression, brep) are not supported yet; use {\"z\": ...}");
+  } else if (in.floor.kind == Floor::Kind::Expression && in.floor.expression.empty()) {
+    throw Error("floor.expression is empty");
+  } else if (in.floor.kind == Floor::Kind::Brep && in.floor.brep.empty()) {
+    throw Error("floor.brep: no file name");
   }
   if (in.strategy != "packing") throw Error("strategy: unknown strategy '" + in.strategy + "' (use \"packing\")");
   if (in.packingOrder != "auto" && in.packingOrder != "hole_degree" && in.packingOrder != "lattice")
@@ -84,6 +96,17 @@ Plan plan(PlanInput in) {
                 ") with the radial allowance does not fit anywhere");
   }
 
+  // The floor: flat, an expression or BREP faces (checked before the long part).
+  std::unique_ptr<FloorSurface> floor;
+  if (in.floor.kind == Floor::Kind::Flat) {
+    floor = makeFlatFloor(in.floor.z);
+  } else if (in.floor.kind == Floor::Kind::Expression) {
+    floor = makeExpressionFloor(in.floor.expression);
+  } else {
+    const std::string& f = in.floor.brep;
+    floor = makeBrepFloor(f.front() == '/' || in.baseDir.empty() ? f : in.baseDir + "/" + f);
+  }
+
   // Pack and cover with each packing order asked for (in parallel: "auto" tries
   // both) and keep the plan with the fewest plunges.
   auto packAndCover = [&](PackingOrder order) {
@@ -110,20 +133,30 @@ Plan plan(PlanInput in) {
 
   // Execution order: tools largest first, each tool's plunges as a short open path
   // starting nearest to where the previous tool ended.
+  // Depths (4.4): the floor's peaks once, then each plunge's disk.
+  const Vec2 lo = region.minCorner(), hi = region.maxCorner();
+  const DepthSolver depths(*floor, lo, hi, std::max(0.5 * rMin, 1e-3 * dist(lo, hi)));
   Vec2 at = in.start ? *in.start : in.boundary.front();
   TourOptions to;
   to.method = tourMethodFromName(in.sequencing);
   to.seed = in.seed;
-  const double zStop = in.floor.z + in.floorAllowance;
   for (size_t t = 0; t < in.tools.size(); ++t) {
     std::vector<Vec2> pts;
     for (const CoverDisk& d : cover.disks)
       if (d.tool == static_cast<int>(t)) pts.push_back(d.center);
     if (pts.empty()) continue;
+    const Cutter cutter{in.tools[t].shape, 0.5 * in.tools[t].diameter,
+                        in.tools[t].shape == CutterShape::Ball ? 0.5 * in.tools[t].diameter : in.tools[t].cornerRadius};
     for (int i : tour(pts, false, at, to)) {
       const Vec2 p = pts[i];
+      const double z = depths.stopHeight(p, cutter) + in.floorAllowance;
+      if (z >= in.topZ) {
+        std::ostringstream where;
+        where << "(" << p.x << ", " << p.y << ")";
+        throw Error("the floor rises to top_z or above under the plunge at " + where.str());
+      }
       if (!out.plunges.empty()) out.stats.travelLength += dist({out.plunges.back().x, out.plunges.back().y}, p);
-      out.plunges.push_back({p.x, p.y, in.tools[t].diameter, in.tools[t].id, zStop});
+      out.plunges.push_back({p.x, p.y, in.tools[t].diameter, in.tools[t].id, z});
       at = p;
     }
     out.stats.perTool.push_back({in.tools[t].id, in.tools[t].diameter, static_cast<int>(pts.size())});

@@ -95,7 +95,7 @@ TEST(Io, SvgDrawsEveryPlungeAndALegend) {
   size_t circles = 0;
   for (size_t at = svg.find("<circle"); at != std::string::npos; at = svg.find("<circle", at + 1)) ++circles;
   EXPECT_EQ(circles, p.plunges.size() + p.stats.perTool.size());  // plunges + legend swatches
-  EXPECT_NE(svg.find("coverage"), std::string::npos);
+  EXPECT_NE(svg.find("% covered"), std::string::npos);
   EXPECT_NE(svg.find("T4"), std::string::npos);
   EXPECT_EQ(svg.rfind("</svg>"), svg.size() - 7);
 }

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "plunge/depth.hpp"
 #include "plunge/geometry.hpp"
 #include "plunge/region.hpp"
 
@@ -15,13 +16,15 @@ struct Tool {
   double diameter = 0.0;
   int id = 0;             // tool number in G-code
   double feed = 200.0;    // plunge feed, mm/min
+  CutterShape shape = CutterShape::Flat;
+  double cornerRadius = 0.0;  // bull nose only
 };
 
 struct Floor {
   enum class Kind { Flat, Expression, Brep } kind = Kind::Flat;
   double z = 0.0;
   std::string expression;
-  std::string brep;
+  std::string brep;  // a BREP file; relative paths start at PlanInput::baseDir
 };
 
 struct PlanInput {
@@ -42,6 +45,7 @@ struct PlanInput {
   std::string packingOrder = "auto";
   std::optional<Vec2> start;   // "start": where the machine starts (default: first boundary point)
   std::string sequencing = "local_search";  // "sequencing": or "annealing" (the thesis)
+  std::string baseDir;  // where a relative floor.brep path starts (the CLI: the input file's folder)
 };
 
 struct Plunge {

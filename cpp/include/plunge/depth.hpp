@@ -1,0 +1,49 @@
+// Plunge depths over a sculptured floor (thesis section 4.4).
+//
+// A plunger stops where its lowest surface first touches the floor: for a
+// flat-bottomed plunger, at the highest floor point under its disk. That point
+// is either a local maximum of the floor inside the disk or the maximum along
+// the disk's rim (eqs. 4.83-4.84). The floor's peaks are found once for the
+// whole pocket with the global optimizer (optimizer.hpp); each plunge then needs
+// only a one-variable optimization around its rim. Ball-end and bull-nose
+// plungers (drop-cutter) maximise floor height minus the tool's profile over
+// the disk, started from the grid and from the floor's peaks.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "plunge/floor.hpp"
+
+namespace plunge {
+
+enum class CutterShape { Flat, Ball, Bull };
+
+struct Cutter {
+  CutterShape shape = CutterShape::Flat;
+  double radius = 0.0;
+  double cornerRadius = 0.0;  // bull nose; a ball's is its radius, a flat one's 0
+};
+
+// Height of the cutter's lower surface above its tip at distance rho from its axis.
+double cutterProfile(const Cutter& cutter, double rho);
+
+class DepthSolver {
+ public:
+  // Finds the floor's peaks over [lo, hi], resolving features down to `spacing`.
+  DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spacing);
+  // Tip height at which the cutter at `center` first touches the floor (no allowance).
+  // Throws plunge::Error when no floor is under the cutter.
+  double stopHeight(Vec2 center, const Cutter& cutter) const;
+  const std::vector<Vec3>& peaks() const { return peaks_; }
+
+ private:
+  const FloorSurface& floor_;
+  double spacing_;
+  std::vector<Vec3> peaks_;
+};
+
+// Reference: dense sampling of the disk every `spacing`, then a local
+// derivative-free refinement of the best samples. Slow; for tests and benchmarks.
+double stopHeightBruteForce(const FloorSurface& floor, Vec2 center, const Cutter& cutter, double spacing);
+
+}  // namespace plunge

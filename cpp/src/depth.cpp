@@ -1,0 +1,157 @@
+#include "plunge/depth.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "plunge/error.hpp"
+#include "plunge/optimizer.hpp"
+
+namespace plunge {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string where(Vec2 c) {
+  std::ostringstream s;
+  s.precision(6);
+  s << "(" << c.x << ", " << c.y << ")";
+  return s.str();
+}
+
+// Maximum of g over the circle of radius r around c (eq. 4.84), by the global
+// optimizer in one periodic variable; -inf if g is nowhere finite on it.
+double rimMaximum(const std::function<double(Vec2)>& g, Vec2 c, double r, double spacing) {
+  OptimizeOptions opt;
+  opt.periodic = true;
+  opt.skipNonFinite = true;
+  opt.samples = std::clamp(static_cast<int>(std::ceil(2 * M_PI * r / spacing)), 48, 720);
+  try {
+    return optimize([&](const double* t) { return g({c.x + r * std::cos(t[0]), c.y + r * std::sin(t[0])}); },
+                    {{0.0, 2 * M_PI}}, Goal::Maximize, opt)
+        .value;
+  } catch (const Error&) {
+    return -kInf;  // no floor anywhere on the rim
+  }
+}
+
+}  // namespace
+
+double cutterProfile(const Cutter& c, double rho) {
+  rho = std::clamp(rho, 0.0, c.radius);
+  const double rc = c.shape == CutterShape::Ball ? c.radius : c.shape == CutterShape::Bull ? c.cornerRadius : 0.0;
+  const double flat = c.radius - rc;
+  if (rho <= flat) return 0.0;
+  const double t = rho - flat;
+  return rc - std::sqrt(std::max(0.0, rc * rc - t * t));
+}
+
+DepthSolver::DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spacing)
+    : floor_(floor), spacing_(spacing) {
+  if (!floor.isFlat()) peaks_ = floor.peaks(lo, hi, spacing);
+}
+
+double DepthSolver::stopHeight(Vec2 c, const Cutter& cutter) const {
+  if (floor_.isFlat()) return floor_.height(c);
+  const double R = cutter.radius;
+  auto lift = [&](Vec2 q) {  // floor height minus the cutter's profile above its tip
+    const double rho = dist(q, c);
+    if (rho > R * (1 + 1e-12)) return kNaN;
+    return floor_.height(q) - cutterProfile(cutter, rho);
+  };
+  double best = rimMaximum(lift, c, R, spacing_);
+  // Peaks of the floor inside the disk (eq. 4.83 and the thesis's local maxima).
+  std::vector<std::vector<double>> inner;
+  for (const Vec3& p : peaks_)
+    if (dist({p.x, p.y}, c) < R) {
+      best = std::max(best, p.z - cutterProfile(cutter, dist({p.x, p.y}, c)));
+      inner.push_back({p.x, p.y});
+    }
+  if (cutter.shape != CutterShape::Flat) {
+    // Drop-cutter: the touching point need not be a peak of the floor.
+    OptimizeOptions opt;
+    opt.skipNonFinite = true;
+    opt.samples = std::clamp(static_cast<int>(std::ceil(2 * R / spacing_)) + 1, 17, 61);
+    opt.starts = inner;
+    try {
+      best = std::max(best, optimize([&](const double* q) { return lift({q[0], q[1]}); },
+                                     {{c.x - R, c.x + R}, {c.y - R, c.y + R}}, Goal::Maximize, opt)
+                                .value);
+    } catch (const Error&) {
+      // no floor under the disk: reported below unless the rim found some
+    }
+  }
+  if (!std::isfinite(best)) throw Error("no floor under the plunge at " + where(c));
+  return best;
+}
+
+double stopHeightBruteForce(const FloorSurface& floor, Vec2 c, const Cutter& cutter, double h) {
+  const double R = cutter.radius;
+  auto lift = [&](Vec2 q) {
+    const double rho = dist(q, c);
+    if (rho > R * (1 + 1e-12)) return kNaN;
+    const double z = floor.height(q);
+    return std::isfinite(z) ? z - cutterProfile(cutter, rho) : kNaN;
+  };
+  // Every sample inside the disk and along its rim.
+  std::vector<std::pair<double, Vec2>> inner, rim;
+  for (double y = c.y - R; y <= c.y + R; y += h)
+    for (double x = c.x - R; x <= c.x + R; x += h) {
+      const double v = lift({x, y});
+      if (std::isfinite(v)) inner.push_back({v, {x, y}});
+    }
+  const int n = std::max(16, static_cast<int>(std::ceil(2 * M_PI * R / h)));
+  for (int k = 0; k < n; ++k) {
+    const double t = 2 * M_PI * k / n;
+    const double v = lift({c.x + R * std::cos(t), c.y + R * std::sin(t)});
+    if (std::isfinite(v)) rim.push_back({v, {t, 0}});
+  }
+  if (inner.empty() && rim.empty()) throw Error("no floor under the plunge at " + where(c));
+  auto byValue = [](const auto& a, const auto& b) { return a.first > b.first; };
+  std::sort(inner.begin(), inner.end(), byValue);
+  std::sort(rim.begin(), rim.end(), byValue);
+  double best = -kInf;
+  // Compass search from the best samples: in the plane inside, along the rim on it.
+  for (size_t k = 0; k < std::min<size_t>(6, inner.size()); ++k) {
+    Vec2 p = inner[k].second;
+    double v = inner[k].first, step = h;
+    while (step > 1e-10) {
+      bool moved = false;
+      for (Vec2 d : {Vec2{1, 0}, Vec2{-1, 0}, Vec2{0, 1}, Vec2{0, -1}, Vec2{0.7071, 0.7071}, Vec2{-0.7071, 0.7071},
+                     Vec2{0.7071, -0.7071}, Vec2{-0.7071, -0.7071}}) {
+        const double w = lift(p + d * step);
+        if (w > v) {
+          v = w;
+          p = p + d * step;
+          moved = true;
+          break;
+        }
+      }
+      if (!moved) step *= 0.5;
+    }
+    best = std::max(best, v);
+  }
+  for (size_t k = 0; k < std::min<size_t>(6, rim.size()); ++k) {
+    double t = rim[k].second.x, v = rim[k].first, step = h / R;
+    while (step > 1e-12) {
+      bool moved = false;
+      for (double s : {step, -step}) {
+        const double w = lift({c.x + R * std::cos(t + s), c.y + R * std::sin(t + s)});
+        if (w > v) {
+          v = w;
+          t += s;
+          moved = true;
+          break;
+        }
+      }
+      if (!moved) step *= 0.5;
+    }
+    best = std::max(best, v);
+  }
+  return best;
+}
+
+}  // namespace plunge

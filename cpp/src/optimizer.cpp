@@ -1,0 +1,391 @@
+#include "plunge/optimizer.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "plunge/error.hpp"
+
+namespace plunge {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string pointText(const double* x, int d) {
+  std::ostringstream s;
+  s.precision(10);
+  s << "(";
+  for (int i = 0; i < d; ++i) s << (i ? ", " : "") << x[i];
+  s << ")";
+  return s.str();
+}
+
+// The function to minimise in normalised coordinates u in [0, 1]^d.
+class Problem {
+ public:
+  Problem(const Objective& f, const std::vector<std::pair<double, double>>& bounds, Goal goal,
+          const OptimizeOptions& opt)
+      : f_(f), d_(static_cast<int>(bounds.size())), sign_(goal == Goal::Maximize ? -1.0 : 1.0), opt_(opt) {
+    for (const auto& b : bounds) {
+      lo_.push_back(b.first);
+      span_.push_back(b.second - b.first);
+    }
+  }
+
+  int dims() const { return d_; }
+  double sign() const { return sign_; }
+  int evaluations() const { return evaluations_; }
+
+  std::vector<double> toX(const Eigen::VectorXd& u) const {
+    std::vector<double> x(d_);
+    for (int i = 0; i < d_; ++i) x[i] = lo_[i] + span_[i] * u[i];
+    return x;
+  }
+
+  // Objective to minimise; +inf outside the domain when allowed.
+  double g(const Eigen::VectorXd& u) {
+    const std::vector<double> x = toX(u);
+    ++evaluations_;
+    const double v = f_(x.data());
+    if (!std::isfinite(v)) {
+      if (opt_.skipNonFinite) return kInf;
+      throw Error("the function returned a non-finite value at " + pointText(x.data(), d_));
+    }
+    return sign_ * v;
+  }
+
+  // Keeps u in the box (or wraps a periodic variable).
+  Eigen::VectorXd project(Eigen::VectorXd u) const {
+    for (int i = 0; i < d_; ++i) u[i] = opt_.periodic ? u[i] - std::floor(u[i]) : std::clamp(u[i], 0.0, 1.0);
+    return u;
+  }
+
+  Eigen::VectorXd gradient(const Eigen::VectorXd& u, double gu) {
+    Eigen::VectorXd grad(d_);
+    const double h = 1e-6;
+    for (int i = 0; i < d_; ++i) {
+      Eigen::VectorXd a = u, b = u;
+      double ha = h, hb = h;
+      if (!opt_.periodic) {  // one-sided at the box's faces
+        ha = std::min(h, u[i]);
+        hb = std::min(h, 1.0 - u[i]);
+      }
+      a[i] -= ha;
+      b[i] += hb;
+      const double ga = ha > 0 ? g(project(a)) : gu, gb = hb > 0 ? g(project(b)) : gu;
+      if (!std::isfinite(ga) || !std::isfinite(gb))
+        grad[i] = std::isfinite(gb) ? (gb - gu) / hb : std::isfinite(ga) ? (gu - ga) / ha : 0.0;
+      else
+        grad[i] = (gb - ga) / (ha + hb);
+    }
+    return grad;
+  }
+
+  // Projected BFGS (3.4.3) from u; returns the local minimiser.
+  Eigen::VectorXd bfgs(Eigen::VectorXd u, double& gu) {
+    gu = g(u);
+    if (!std::isfinite(gu)) return u;
+    Eigen::MatrixXd H = Eigen::MatrixXd::Identity(d_, d_);
+    Eigen::VectorXd grad = gradient(u, gu);
+    for (int iter = 0; iter < 100; ++iter) {
+      // Variables held at a face by a gradient pointing out of the box are fixed.
+      std::vector<bool> fixedVar(d_, false);
+      if (!opt_.periodic)
+        for (int i = 0; i < d_; ++i)
+          fixedVar[i] = (u[i] <= 0.0 && grad[i] > 0) || (u[i] >= 1.0 && grad[i] < 0);
+      Eigen::VectorXd gfree = grad;
+      for (int i = 0; i < d_; ++i)
+        if (fixedVar[i]) gfree[i] = 0;
+      if (gfree.norm() < 1e-12) break;
+      Eigen::VectorXd p = -H * gfree;
+      for (int i = 0; i < d_; ++i)
+        if (fixedVar[i]) p[i] = 0;
+      if (p.dot(gfree) >= 0) {
+        H.setIdentity();
+        p = -gfree;
+      }
+      // Armijo backtracking along the projected path.
+      double alpha = std::min(1.0, 0.25 / std::max(p.lpNorm<Eigen::Infinity>(), 1e-300));
+      Eigen::VectorXd un = u;
+      double gn = gu;
+      bool moved = false;
+      for (int k = 0; k < 50; ++k) {
+        un = project(u + alpha * p);
+        gn = g(un);
+        if (std::isfinite(gn) && gn <= gu + 1e-4 * grad.dot(un - u)) {
+          moved = true;
+          break;
+        }
+        alpha *= 0.5;
+      }
+      if (!moved) break;
+      Eigen::VectorXd s = un - u;
+      if (opt_.periodic)
+        for (int i = 0; i < d_; ++i) s[i] -= std::round(s[i]);
+      const Eigen::VectorXd gradn = gradient(un, gn);
+      const Eigen::VectorXd y = gradn - grad;
+      u = un;
+      const double improvement = gu - gn;
+      gu = gn;
+      grad = gradn;
+      if (s.lpNorm<Eigen::Infinity>() < opt_.tolerance) break;
+      const double sy = s.dot(y);
+      if (sy > 1e-16) {
+        const double rho = 1.0 / sy;
+        const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(d_, d_);
+        H = (I - rho * s * y.transpose()) * H * (I - rho * y * s.transpose()) + rho * s * s.transpose();
+      }
+      if (improvement <= 1e-15 * (1.0 + std::fabs(gu)) && s.lpNorm<Eigen::Infinity>() < 1e-8) break;
+    }
+    return u;
+  }
+
+  // Derivative-free compass search: settles optima on ridges and corners where
+  // finite-difference gradients mislead.
+  Eigen::VectorXd polish(Eigen::VectorXd u, double& gu) {
+    std::vector<Eigen::VectorXd> dirs;
+    for (int i = 0; i < d_; ++i) {
+      Eigen::VectorXd e = Eigen::VectorXd::Zero(d_);
+      e[i] = 1;
+      dirs.push_back(e);
+      dirs.push_back(-e);
+    }
+    if (d_ == 2)
+      for (double sx : {-1.0, 1.0})
+        for (double sy : {-1.0, 1.0}) dirs.push_back(Eigen::Vector2d(sx, sy) / std::sqrt(2.0));
+    double step = 1e-4;
+    for (int iter = 0; iter < 400 && step > opt_.tolerance; ++iter) {
+      bool better = false;
+      for (const Eigen::VectorXd& e : dirs) {
+        const Eigen::VectorXd v = project(u + step * e);
+        const double gv = g(v);
+        if (gv < gu) {
+          u = v;
+          gu = gv;
+          better = true;
+          break;
+        }
+      }
+      if (!better) step *= 0.5;
+    }
+    return u;
+  }
+
+ private:
+  const Objective& f_;
+  int d_;
+  double sign_;
+  OptimizeOptions opt_;
+  std::vector<double> lo_, span_;
+  int evaluations_ = 0;
+};
+
+}  // namespace
+
+std::vector<int> subtractiveClustering(const std::vector<std::vector<double>>& points, double ra, double rb,
+                                       double acceptRatio, double rejectRatio) {
+  const int n = static_cast<int>(points.size());
+  std::vector<int> centres;
+  if (n == 0) return centres;
+  const double alpha = 4.0 / (ra * ra), beta = 4.0 / (rb * rb);  // eqs. 3.11b, 3.14b
+  auto d2 = [&](int i, int j) {
+    double s = 0;
+    for (size_t k = 0; k < points[i].size(); ++k) s += (points[i][k] - points[j][k]) * (points[i][k] - points[j][k]);
+    return s;
+  };
+  // Eq. 3.11a; terms beyond 3 r_a (below e^-36) are left out, via a bucket grid.
+  const double cutoff = 3.0 * std::max(ra, rb);
+  const int dims = static_cast<int>(points[0].size());
+  const int cells = std::max(1, std::min(512, static_cast<int>(1.0 / cutoff)));
+  auto cellOf = [&](const std::vector<double>& p, int k) {
+    return std::clamp(static_cast<int>(p[k] * cells), 0, cells - 1);
+  };
+  std::vector<std::vector<int>> bucket(dims == 1 ? cells : cells * cells);
+  for (int i = 0; i < n; ++i) bucket[dims == 1 ? cellOf(points[i], 0) : cellOf(points[i], 0) * cells + cellOf(points[i], 1)].push_back(i);
+  auto near = [&](int i, const std::function<void(int)>& visit) {
+    const int cx = cellOf(points[i], 0), cy = dims == 1 ? 0 : cellOf(points[i], 1);
+    for (int x = std::max(0, cx - 1); x <= std::min(cells - 1, cx + 1); ++x)
+      for (int y = dims == 1 ? 0 : std::max(0, cy - 1); y <= (dims == 1 ? 0 : std::min(cells - 1, cy + 1)); ++y)
+        for (int j : bucket[dims == 1 ? x : x * cells + y]) visit(j);
+  };
+  std::vector<double> pot(n, 0.0);
+  for (int i = 0; i < n; ++i) near(i, [&](int j) { pot[i] += std::exp(-alpha * d2(i, j)); });
+
+  double first = -1;
+  for (int guard = 0; guard < n; ++guard) {
+    const int k = static_cast<int>(std::max_element(pot.begin(), pot.end()) - pot.begin());
+    const double pk = pot[k];
+    if (first < 0) first = pk;  // eq. 3.13
+    if (pk <= 0) break;
+    bool accept;
+    if (pk > acceptRatio * first) {
+      accept = true;
+    } else if (pk < rejectRatio * first) {
+      break;
+    } else {
+      // Eq. 3.17: between the thresholds, accept only if far enough from the centres.
+      double dmin = kInf;
+      for (int c : centres) dmin = std::min(dmin, std::sqrt(d2(k, c)));
+      accept = dmin / ra + pk / first >= 1.0;
+    }
+    if (!accept) {
+      pot[k] = 0;
+      continue;
+    }
+    centres.push_back(k);
+    near(k, [&](int j) { pot[j] -= pk * std::exp(-beta * d2(k, j)); });  // eq. 3.16
+    pot[k] = 0;
+  }
+  return centres;
+}
+
+OptimizeResult optimize(const Objective& f, const std::vector<std::pair<double, double>>& bounds, Goal goal,
+                        const OptimizeOptions& opt) {
+  if (bounds.empty() || bounds.size() > 2) throw Error("optimize: give bounds for one or two variables");
+  for (size_t i = 0; i < bounds.size(); ++i) {
+    const auto [a, b] = bounds[i];
+    const std::string name = "optimize: bounds[" + std::to_string(i) + "]";
+    if (!std::isfinite(a) || !std::isfinite(b)) throw Error(name + " is not finite");
+    if (a == b) throw Error(name + " is an empty interval (a == b)");
+    if (a > b) throw Error(name + " is reversed (a > b)");
+  }
+  if (opt.periodic && bounds.size() != 1) throw Error("optimize: only a function of one variable can be periodic");
+  if (!(opt.clusterRadius > 0) || !(opt.squashFactor > 0)) throw Error("optimize: cluster radii must be > 0");
+
+  Problem pb(f, bounds, goal, opt);
+  const int d = pb.dims();
+  const int n = opt.samples > 2 ? opt.samples : (d == 1 ? 201 : 41);
+  const int total = d == 1 ? n : n * n;
+  // 1. Patching (3.4.1). In one periodic variable the last sample would repeat the first.
+  const double step = opt.periodic ? 1.0 / n : 1.0 / (n - 1);
+  auto uOf = [&](int idx) {
+    Eigen::VectorXd u(d);
+    if (d == 1) {
+      u[0] = idx * step;
+    } else {
+      u[0] = (idx % n) * step;
+      u[1] = (idx / n) * step;
+    }
+    return u;
+  };
+  std::vector<double> gv(total);
+  for (int i = 0; i < total; ++i) gv[i] = pb.g(uOf(i));
+  auto at = [&](int ix, int iy) -> double {
+    if (opt.periodic) ix = (ix % n + n) % n;
+    if (ix < 0 || ix >= n || iy < 0 || iy >= (d == 1 ? 1 : n)) return kInf;
+    return gv[d == 1 ? ix : iy * n + ix];
+  };
+
+  // 2. Curvature classification (3.2): the convex group of the function to minimise.
+  double gmin = kInf, gmax = -kInf;
+  for (double v : gv)
+    if (std::isfinite(v)) {
+      gmin = std::min(gmin, v);
+      gmax = std::max(gmax, v);
+    }
+  const double eps = 1e-9 * (gmax - gmin + 1e-300);
+  std::vector<int> group;
+  for (int i = 0; i < total; ++i) {
+    const int ix = d == 1 ? i : i % n, iy = d == 1 ? 0 : i / n;
+    const double c = at(ix, iy);
+    if (!std::isfinite(c)) continue;
+    if (d == 1) {
+      const double l = at(ix - 1, 0), r = at(ix + 1, 0);
+      if (!std::isfinite(l) || !std::isfinite(r)) continue;
+      const double g1 = (r - l) / (2 * step), g2 = (r - 2 * c + l) / (step * step);
+      const double k = g2 / std::pow(1 + g1 * g1, 1.5);  // eq. 3.3
+      if (k > eps / (step * step)) group.push_back(i);
+    } else {
+      const double l = at(ix - 1, iy), r = at(ix + 1, iy), b = at(ix, iy - 1), t = at(ix, iy + 1);
+      const double bl = at(ix - 1, iy - 1), br = at(ix + 1, iy - 1), tl = at(ix - 1, iy + 1), tr = at(ix + 1, iy + 1);
+      if (!std::isfinite(l + r + b + t + bl + br + tl + tr)) continue;
+      const double gx = (r - l) / (2 * step), gy = (t - b) / (2 * step);
+      const double gxx = (r - 2 * c + l) / (step * step), gyy = (t - 2 * c + b) / (step * step);
+      const double gxy = (tr - tl - br + bl) / (4 * step * step);
+      // Fundamental forms of the graph z = g(x, y) (eqs. 3.8-3.10), upward normal.
+      const double E = 1 + gx * gx, F = gx * gy, G = 1 + gy * gy, w = std::sqrt(1 + gx * gx + gy * gy);
+      const double L = gxx / w, M = gxy / w, N = gyy / w;
+      const double K = (L * N - M * M) / (E * G - F * F);            // eq. 3.6
+      const double H = (E * N - 2 * F * M + G * L) / (2 * (E * G - F * F));  // eq. 3.7
+      // Table 3.2: elliptic or parabolic and bending up = a valley of g.
+      const double tiny = eps / (step * step);
+      if (H > tiny && K > -tiny * tiny) group.push_back(i);
+    }
+  }
+
+  // 3. Subtractive clustering of the group (3.3.1): the start points.
+  std::vector<int> starts;
+  {
+    std::vector<std::vector<double>> pts;
+    for (int i : group) {
+      const Eigen::VectorXd u = uOf(i);
+      pts.emplace_back(u.data(), u.data() + d);
+    }
+    for (int c : subtractiveClustering(pts, opt.clusterRadius, opt.squashFactor * opt.clusterRadius,
+                                       opt.acceptRatio, opt.rejectRatio))
+      starts.push_back(group[c]);
+  }
+  // Beyond the thesis: the grid's own local minima and its best point, so that
+  // optima in narrow or flat regions and on the box's faces are reached too.
+  int best = -1;
+  for (int i = 0; i < total; ++i) {
+    if (!std::isfinite(gv[i])) continue;
+    if (best < 0 || gv[i] < gv[best]) best = i;
+    const int ix = d == 1 ? i : i % n, iy = d == 1 ? 0 : i / n;
+    bool lowest = true, lower = false;
+    for (int dy = (d == 1 ? 0 : -1); dy <= (d == 1 ? 0 : 1); ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        if (!dx && !dy) continue;
+        const double v = at(ix + dx, iy + dy);
+        if (v < gv[i]) lowest = false;
+        if (v > gv[i]) lower = true;
+      }
+    if (lowest && lower) starts.push_back(i);
+  }
+  if (best < 0) throw Error("optimize: the function has no finite value on the box");
+  starts.push_back(best);
+  std::sort(starts.begin(), starts.end());
+  starts.erase(std::unique(starts.begin(), starts.end()), starts.end());
+
+  // 4. Quasi-Newton from every start (3.4.3), then a derivative-free polish.
+  OptimizeResult out;
+  std::vector<std::pair<Eigen::VectorXd, double>> found;
+  std::vector<Eigen::VectorXd> from;
+  for (int s : starts) from.push_back(uOf(s));
+  for (const std::vector<double>& x : opt.starts) {
+    if (static_cast<int>(x.size()) != d) throw Error("optimize: a start point has the wrong dimension");
+    Eigen::VectorXd u(d);
+    for (int i = 0; i < d; ++i) u[i] = (x[i] - bounds[i].first) / (bounds[i].second - bounds[i].first);
+    from.push_back(pb.project(u));
+  }
+  for (const Eigen::VectorXd& start : from) {
+    double gu;
+    Eigen::VectorXd u = pb.bfgs(start, gu);
+    u = pb.polish(u, gu);
+    if (!std::isfinite(gu)) continue;
+    bool dup = false;
+    for (auto& [v, gvv] : found) {
+      Eigen::VectorXd diff = v - u;
+      if (opt.periodic) diff[0] -= std::round(diff[0]);
+      if (diff.lpNorm<Eigen::Infinity>() < 1e-6) {
+        dup = true;
+        if (gu < gvv) {
+          v = u;
+          gvv = gu;
+        }
+      }
+    }
+    if (!dup) found.emplace_back(u, gu);
+  }
+  std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  for (const auto& [u, gu] : found) out.locals.push_back({pb.toX(u), pb.sign() * gu});
+  out.x = out.locals.front().x;
+  out.value = out.locals.front().value;
+  out.evaluations = pb.evaluations();
+  return out;
+}
+
+}  // namespace plunge

@@ -1,0 +1,147 @@
+#include <gtest/gtest.h>
+
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <GeomAPI_PointsToBSplineSurface.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <TopoDS_Compound.hxx>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "plunge/depth.hpp"
+#include "plunge/error.hpp"
+
+using namespace plunge;
+
+namespace {
+
+double bumps(double x, double y) {
+  return -20 + 3 * std::exp(-((x - 30) * (x - 30) + (y - 40) * (y - 40)) / 60.0) +
+         2 * std::exp(-((x - 70) * (x - 70) + (y - 55) * (y - 55)) / 40.0) + 0.02 * x - 0.01 * y +
+         0.5 * std::sin(0.15 * x) * std::cos(0.1 * y);
+}
+
+const char* kBumps =
+    "-20 + 3*exp(-((x-30)^2+(y-40)^2)/60) + 2*exp(-((x-70)^2+(y-55)^2)/40) + 0.02*x - 0.01*y"
+    " + 0.5*sin(0.15*x)*cos(0.1*y)";
+
+// Gouge-free and tight: never below the true maximum (1e-6 mm), at most 0.01 mm above.
+void expectTight(const FloorSurface& floor, const DepthSolver& solver, Vec2 c, const Cutter& cutter) {
+  const double ours = solver.stopHeight(c, cutter);
+  const double brute = stopHeightBruteForce(floor, c, cutter, 0.25);
+  EXPECT_GE(ours, brute - 1e-6) << "gouge at " << c.x << "," << c.y << " r " << cutter.radius;
+  EXPECT_LE(ours, brute + 0.01) << "loose at " << c.x << "," << c.y;
+}
+
+std::string bsplineFaceBrep() {
+  // A B-spline surface through a grid of the bump function, as CAD would hand it over.
+  TColgp_Array2OfPnt pts(1, 41, 1, 31);
+  for (int i = 1; i <= 41; ++i)
+    for (int j = 1; j <= 31; ++j) {
+      const double x = 2.5 * (i - 1), y = 2.5 * (j - 1);
+      pts.SetValue(i, j, gp_Pnt(x, y, bumps(x, y)));
+    }
+  GeomAPI_PointsToBSplineSurface fit(pts, 3, 3, GeomAbs_C2, 1e-4);
+  const TopoDS_Face face = BRepBuilderAPI_MakeFace(fit.Surface(), 1e-7);
+  std::ostringstream s;
+  BRepTools::Write(face, s);
+  return s.str();
+}
+
+}  // namespace
+
+TEST(Depth, CutterProfiles) {
+  const Cutter flat{CutterShape::Flat, 5, 0}, ball{CutterShape::Ball, 5, 5}, bull{CutterShape::Bull, 5, 2};
+  EXPECT_DOUBLE_EQ(cutterProfile(flat, 4.9), 0);
+  EXPECT_DOUBLE_EQ(cutterProfile(ball, 0), 0);
+  EXPECT_NEAR(cutterProfile(ball, 3), 5 - 4, 1e-12);
+  EXPECT_DOUBLE_EQ(cutterProfile(bull, 3), 0);
+  EXPECT_NEAR(cutterProfile(bull, 5), 2, 1e-12);
+  EXPECT_NEAR(cutterProfile(bull, 4), 2 - std::sqrt(3.0), 1e-12);
+}
+
+TEST(Depth, ExpressionFloorAgainstBruteForce) {
+  const auto floor = makeExpressionFloor(kBumps);
+  EXPECT_NEAR(floor->height({12, 34}), bumps(12, 34), 1e-12);
+  const DepthSolver solver(*floor, {0, 0}, {100, 75}, 2.0);
+  ASSERT_GE(solver.peaks().size(), 2u);
+  const Cutter flat{CutterShape::Flat, 6, 0};
+  expectTight(*floor, solver, {30, 40}, flat);   // holds a peak (interior maximum)
+  EXPECT_NEAR(solver.stopHeight({30, 40}, flat), solver.stopHeight({30.5, 40.5}, flat), 0.2);
+  expectTight(*floor, solver, {50, 20}, flat);   // no peak inside: the rim
+  expectTight(*floor, solver, {70, 55}, {CutterShape::Flat, 3, 0});
+  expectTight(*floor, solver, {6, 6}, flat);     // at the floor's edge
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> ux(8, 92), uy(8, 67);
+  for (int i = 0; i < 40; ++i) expectTight(*floor, solver, {ux(rng), uy(rng)}, {CutterShape::Flat, 2 + i % 7, 0});
+}
+
+TEST(Depth, BallAndBullAgainstAnalyticPlane) {
+  const double m = 0.3;  // z = m x
+  const auto floor = makeExpressionFloor("0.3*x");
+  const DepthSolver solver(*floor, {-50, -50}, {50, 50}, 2.0);
+  const double k = std::sqrt(1 + m * m);
+  EXPECT_NEAR(solver.stopHeight({4, 1}, {CutterShape::Flat, 5, 0}), m * 9, 1e-7);
+  EXPECT_NEAR(solver.stopHeight({4, 1}, {CutterShape::Ball, 5, 5}), m * 4 + 5 * (k - 1), 1e-7);
+  EXPECT_NEAR(solver.stopHeight({4, 1}, {CutterShape::Bull, 5, 2}), m * (4 + 3) + 2 * (k - 1), 1e-7);
+  // A ball in a bowl touches at its lowest point.
+  const auto bowl = makeExpressionFloor("(x^2 + y^2) / 200");
+  const DepthSolver bs(*bowl, {-50, -50}, {50, 50}, 2.0);
+  EXPECT_NEAR(bs.stopHeight({0, 0}, {CutterShape::Ball, 5, 5}), 0.0, 1e-9);
+}
+
+TEST(Depth, BallAndBullAgainstBruteForce) {
+  const auto floor = makeExpressionFloor(kBumps);
+  const DepthSolver solver(*floor, {0, 0}, {100, 75}, 2.0);
+  for (Vec2 c : {Vec2{30, 40}, Vec2{50, 20}, Vec2{68, 52}})
+    for (const Cutter& k : {Cutter{CutterShape::Ball, 6, 6}, Cutter{CutterShape::Bull, 6, 2}})
+      expectTight(*floor, solver, c, k);
+}
+
+TEST(Depth, BsplineFaceFromOcct) {
+  const auto floor = makeBrepFloorFromText(bsplineFaceBrep());
+  EXPECT_NEAR(floor->height({31.2, 38.7}), bumps(31.2, 38.7), 0.01);  // the fit follows the function
+  EXPECT_TRUE(std::isnan(floor->height({150, 10})));                 // no floor there
+  const DepthSolver solver(*floor, {0, 0}, {100, 75}, 2.0);
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> ux(8, 92), uy(8, 67);
+  for (int i = 0; i < 25; ++i) expectTight(*floor, solver, {ux(rng), uy(rng)}, {CutterShape::Flat, 3 + i % 6, 0});
+  expectTight(*floor, solver, {30, 40}, {CutterShape::Flat, 5, 0});
+  expectTight(*floor, solver, {30, 40}, {CutterShape::Ball, 5, 5});
+}
+
+TEST(Depth, SeveralFacesMeetingAtARidge) {
+  // A roof z = -10 - |x| / 4 of two planar faces: over the ridge the stop is the ridge.
+  BRep_Builder b;
+  TopoDS_Compound roof;
+  b.MakeCompound(roof);
+  b.Add(roof, BRepBuilderAPI_MakeFace(BRepBuilderAPI_MakePolygon(gp_Pnt(-40, -30, -20), gp_Pnt(0, -30, -10),
+                                                                 gp_Pnt(0, 30, -10), gp_Pnt(-40, 30, -20), true)));
+  b.Add(roof, BRepBuilderAPI_MakeFace(BRepBuilderAPI_MakePolygon(gp_Pnt(0, -30, -10), gp_Pnt(40, -30, -20),
+                                                                 gp_Pnt(40, 30, -20), gp_Pnt(0, 30, -10), true)));
+  std::ostringstream s;
+  BRepTools::Write(roof, s);
+  const auto floor = makeBrepFloorFromText(s.str());
+  EXPECT_NEAR(floor->height({-8, 3}), -12, 1e-9);
+  EXPECT_NEAR(floor->height({8, 3}), -12, 1e-9);
+  const DepthSolver solver(*floor, {-40, -30}, {40, 30}, 2.0);
+  EXPECT_NEAR(solver.stopHeight({2, 0}, {CutterShape::Flat, 5, 0}), -10, 1e-7);   // ridge inside the disk
+  EXPECT_NEAR(solver.stopHeight({12, 0}, {CutterShape::Flat, 5, 0}), -11.75, 1e-7);  // rim nearest the ridge
+  expectTight(*floor, solver, {1, 5}, {CutterShape::Ball, 4, 4});
+}
+
+TEST(Depth, BadFloors) {
+  EXPECT_THROW(makeExpressionFloor("sin(x"), Error);
+  EXPECT_THROW(makeExpressionFloor("z + 1"), Error);
+  EXPECT_THROW(makeExpressionFloor(""), Error);
+  EXPECT_THROW(makeBrepFloor("/nonexistent/floor.brep"), Error);
+  EXPECT_THROW(makeBrepFloorFromText("not a brep"), Error);
+  const auto floor = makeExpressionFloor("sqrt(x)");  // undefined for x < 0
+  const DepthSolver solver(*floor, {-20, -20}, {20, 20}, 2.0);
+  EXPECT_THROW(solver.stopHeight({-10, 0}, {CutterShape::Flat, 3, 0}), Error);  // no floor under it
+}

@@ -1,0 +1,139 @@
+"""Sculptured floors through the CLI and the module: expression and BREP floors."""
+import json
+import math
+import os
+import shutil
+import subprocess
+
+import pytest
+
+from conftest import SHAPES
+
+DATA = os.path.dirname(SHAPES)
+EXPRESSION = "-25 + 4*cos(0.06*x+0.5) + 3*sin(0.08*y+1) + 6*exp(-((x-150)^2+(y-40)^2)/200)"
+
+
+def floor_py(x, y):
+    return (-25 + 4 * math.cos(0.06 * x + 0.5) + 3 * math.sin(0.08 * y + 1)
+            + 6 * math.exp(-((x - 150) ** 2 + (y - 40) ** 2) / 200))
+
+
+def load(name):
+    with open(os.path.join(SHAPES, name + ".json")) as f:
+        return json.load(f)
+
+
+def disk_max(f, cx, cy, r, h=0.4):
+    """The floor's maximum over the disk, sampled (a lower bound of the true one)."""
+    best = -math.inf
+    n = int(r / h) + 1
+    for i in range(-n, n + 1):
+        for j in range(-n, n + 1):
+            x, y = cx + i * h, cy + j * h
+            if (x - cx) ** 2 + (y - cy) ** 2 <= r * r:
+                best = max(best, f(x, y))
+    for k in range(360):
+        t = 2 * math.pi * k / 360
+        best = max(best, f(cx + r * math.cos(t), cy + r * math.sin(t)))
+    return best
+
+
+def test_expression_floor_depths(plunge):
+    data = load("islands")
+    data["floor"] = {"expression": EXPRESSION}
+    plan = plunge.plan(data)
+    allowance = data["allowance"]["floor"]
+    zs = [p["z"] for p in plan["plunges"]]
+    assert max(zs) - min(zs) > 5  # the floor is not flat, nor are the stops
+    for p in plan["plunges"][::3]:
+        sampled = disk_max(floor_py, p["x"], p["y"], p["diameter"] / 2)
+        # Never below the floor (no gouge), and not loose: sampling sees nearly the maximum.
+        assert p["z"] >= sampled + allowance - 1e-6, p
+        assert p["z"] <= sampled + allowance + 0.02, p
+
+
+def test_ball_and_bull_tools(plunge):
+    data = load("convex")
+    data["floor"] = {"expression": "-20 + 0.05*x"}
+    data["tools"] = [{"diameter": 20, "shape": "ball"}, {"diameter": 12, "shape": "bull", "corner_radius": 2},
+                     {"diameter": 6}]
+    plan = plunge.plan(data)
+    m = 0.05
+    k = math.sqrt(1 + m * m)
+    for p in plan["plunges"]:
+        r = p["diameter"] / 2
+        if p["tool_id"] == 1:    # ball: the analytic drop onto a plane
+            expect = -20 + m * p["x"] + r * (k - 1)
+        elif p["tool_id"] == 2:  # bull nose, corner radius 2
+            expect = -20 + m * (p["x"] + r - 2) + 2 * (k - 1)
+        else:
+            expect = -20 + m * (p["x"] + r)
+        assert abs(p["z"] - (expect + 0.3)) < 1e-6, p
+
+
+def test_brep_floor_through_the_cli(cli, tmp_path):
+    shutil.copy(os.path.join(DATA, "floors", "bumps.brep"), tmp_path / "bumps.brep")
+    data = {"boundary": [[2, 2], [98, 2], [98, 73], [2, 73]], "islands": [[[40, 20], [55, 20], [48, 34]]],
+            "tools": [{"diameter": 12}, {"diameter": 6}], "top_z": 0, "safe_z": 5,
+            "floor": {"brep": "bumps.brep"}, "allowance": {"radial": 0.5, "floor": 0.3}}
+    src = tmp_path / "pocket.json"
+    src.write_text(json.dumps(data))
+    res = subprocess.run([cli, "plan", str(src), "-o", str(tmp_path / "plan.json"), "--svg", str(tmp_path / "p.svg")],
+                         capture_output=True, text=True, cwd="/")
+    assert res.returncode == 0, res.stderr
+    plan = json.loads((tmp_path / "plan.json").read_text())
+    zs = [p["z"] for p in plan["plunges"]]
+    # The face spans about -21 .. -15.5 mm; every stop is on it plus the allowance.
+    assert -21.5 < min(zs) and max(zs) < -14.5 and max(zs) - min(zs) > 2
+    assert plan["stats"]["coverage"] >= 0.995
+
+
+@pytest.mark.parametrize("floor,message", [
+    ({"expression": "sin(x"}, "floor.expression"),
+    ({"expression": "z + 1"}, "Unexpected token"),
+    ({"expression": ""}, "floor.expression is empty"),
+    ({"brep": "missing.brep"}, "cannot read"),
+    ({"expression": "10 + x"}, "top_z"),
+    ({"z": -5, "expression": "x"}, "exactly one"),
+])
+def test_bad_floors(cli, tmp_path, floor, message):
+    data = load("convex")
+    data["floor"] = floor
+    src = tmp_path / "in.json"
+    src.write_text(json.dumps(data))
+    res = subprocess.run([cli, "plan", str(src)], capture_output=True, text=True)
+    assert res.returncode == 2
+    assert len(res.stderr.strip().splitlines()) == 1 and message in res.stderr
+    assert res.stdout == ""
+
+
+def test_optimize_standard_functions(plunge):
+    him = plunge.optimize(lambda x, y: (x * x + y - 11) ** 2 + (x + y * y - 7) ** 2, [(-5, 5), (-5, 5)])
+    assert him.value < 1e-10 and len([1 for x, v in him.locals if v < 1e-8]) == 4
+    ros = plunge.optimize(lambda x, y: (1 - x) ** 2 + 100 * (y - x * x) ** 2, [(-2, 2), (-1, 3)], "min")
+    assert abs(ros.x[0] - 1) < 1e-5 and abs(ros.x[1] - 1) < 1e-5
+    ras = plunge.optimize(lambda x: 10 + x * x - 10 * math.cos(2 * math.pi * x), [(-5.12, 5.12)])
+    assert abs(ras.x[0]) < 1e-6 and isinstance(ras.x, tuple) and len(ras.x) == 1
+    edge = plunge.optimize(lambda x, y: x - y, [(0, 2), (0, 1)], goal="max")
+    assert edge.x == pytest.approx((2, 0), abs=1e-9) and edge.value == pytest.approx(2)
+    assert edge.locals[0][0] == edge.x and edge.locals[0][1] == edge.value
+
+
+@pytest.mark.parametrize("bounds,message", [
+    ([(1, 1)], "empty"), ([(2, 1)], "reversed"), ([], "one or two"), ([(0, 1)] * 3, "one or two"),
+    ([(0, float("inf"))], "not finite"),
+])
+def test_optimize_bad_boxes(plunge, bounds, message):
+    with pytest.raises(ValueError, match=message):
+        plunge.optimize(lambda *a: 0.0, bounds)
+
+
+def test_optimize_bad_functions(plunge):
+    with pytest.raises(ZeroDivisionError):
+        plunge.optimize(lambda x: 1 / 0, [(0, 1)])
+    with pytest.raises(ValueError, match="non-finite"):
+        plunge.optimize(lambda x: math.nan, [(0, 1)])
+    with pytest.raises(ValueError, match="must return a float"):
+        plunge.optimize(lambda x: "high", [(0, 1)])
+    with pytest.raises(ValueError, match="goal"):
+        plunge.optimize(lambda x: x, [(0, 1)], goal="best")
