@@ -71,14 +71,19 @@ py::object fromJson(const json& j) {
   }
 }
 
-py::object planDict(const py::dict& input) {
+py::object planDict(const py::dict& input, bool svg) {
   const std::string text = toJson(input, "input").dump();
-  std::string out;
+  std::string out, picture;
   {
     py::gil_scoped_release release;
-    out = plunge::planToJson(plunge::plan(plunge::planInputFromJson(text)));
+    const plunge::PlanInput in = plunge::planInputFromJson(text);
+    const plunge::Plan plan = plunge::plan(in);
+    out = plunge::planToJson(plan);
+    if (svg) picture = plunge::planToSvg(in, plan);
   }
-  return fromJson(json::parse(out));
+  py::object result = fromJson(json::parse(out));
+  if (svg) result["svg"] = py::str(picture);
+  return result;
 }
 
 std::vector<int> tourOf(const std::vector<std::pair<double, double>>& points, bool closed,
@@ -123,8 +128,9 @@ plunge::OptimizeResult optimizePy(const py::function& f, const std::vector<std::
 PYBIND11_MODULE(plunge, m) {
   m.doc() = "Plunge roughing planner: circle packing, gap covering, sequencing and depths";
   py::register_exception<plunge::Error>(m, "PlanError", PyExc_ValueError);
-  m.def("plan", &planDict, py::arg("input"),
-        "Plan a pocket: input and output dicts as in CONTRACTS.md sections 1 and 2.");
+  m.def("plan", &planDict, py::arg("input"), py::arg("svg") = false,
+        "Plan a pocket: input and output dicts as in CONTRACTS.md sections 1 and 2; with svg=True "
+        "the result also holds \"svg\", the plan's picture.");
   py::class_<plunge::OptimizeResult>(m, "Result", "Global optimum found by plunge.optimize")
       .def_property_readonly("x", [](const plunge::OptimizeResult& r) { return asTuple(r.x); })
       .def_readonly("value", &plunge::OptimizeResult::value)

@@ -1,0 +1,287 @@
+"""The Plunge Rough operation (App side: properties, planning, paths).
+
+One Plunge Rough operation plans the pocket once for all its plunger tool
+controllers (ToolControllers). Its own path holds the plunges of the largest
+plunger; every other plunger gets a companion operation ("Plunge Rough T2 ...")
+right after it in the Job, holding that tool's plunges from the same plan. So
+each plunge is made by the tool the plan gave it, the post processor writes a
+tool change before each tool's plunges, and the Path simulator cuts each tool's
+plunges with that tool.
+
+This module never imports GUI code: it runs headless (freecadcmd).
+"""
+import json
+import os
+import tempfile
+
+import FreeCAD
+from PySide.QtCore import QT_TRANSLATE_NOOP
+
+from freecad_plugin import generator, geometry
+from freecad_plugin.compat import PathFeedRate, PathLog, PathOp, PathUtils
+
+__title__ = "Plunge Rough operation"
+__doc__ = "Plunge roughing of pockets: circle packing, gap covering, sequencing, depths."
+
+translate = FreeCAD.Qt.translate
+
+# Properties the job's setup sheet can carry defaults for.
+SETUP_PROPERTIES = ["RadialAllowance", "FloorAllowance", "ChordTolerance", "UseCannedCycle", "PeckDepth",
+                    "MinCoverage"]
+
+
+def SetupProperties():
+    return list(SETUP_PROPERTIES)
+
+
+def _report(obj, message):
+    """A problem the user must see: the report view, the op's summary, an empty path."""
+    FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, message))
+    obj.Summary = message
+
+
+def _tool_controllers(obj):
+    """The plunger tool controllers, largest first (the op's own one if none is listed)."""
+    tcs = []
+    for tc in list(obj.ToolControllers) or ([obj.ToolController] if obj.ToolController else []):
+        if tc is not None and tc not in tcs:
+            tcs.append(tc)
+    return sorted(tcs, key=lambda tc: -float(tc.Tool.Diameter))
+
+
+def _add(obj, kind, name, tip, default=None, mode=None):
+    if not hasattr(obj, name):
+        obj.addProperty(kind, name, "Plunge Rough", QT_TRANSLATE_NOOP("App::Property", tip))
+        if default is not None:
+            setattr(obj, name, default)
+    if mode is not None:
+        obj.setEditorMode(name, mode)
+
+
+class ObjectPlungeRough(PathOp.ObjectOp):
+    """Proxy of the Plunge Rough operation."""
+
+    def opFeatures(self, obj):
+        return (PathOp.FeatureTool | PathOp.FeatureDepths | PathOp.FeatureHeights | PathOp.FeatureBaseFaces
+                | PathOp.FeatureCoolant)
+
+    def initOperation(self, obj):
+        self._addProperties(obj)
+
+    def _addProperties(self, obj):
+        _add(obj, "App::PropertyLinkList", "ToolControllers",
+             "All plunger tool controllers to use; the largest one is this operation's own")
+        _add(obj, "App::PropertyDistance", "RadialAllowance", "Material left on the walls and islands", 0.0)
+        _add(obj, "App::PropertyDistance", "FloorAllowance", "Material left above the floor", 0.0)
+        _add(obj, "App::PropertyLength", "ChordTolerance",
+             "Largest deviation when free-form walls become polylines (added to the radial allowance)", 0.01)
+        _add(obj, "App::PropertyBool", "UseCannedCycle", "Plunge with G81 (G83 when pecking) instead of G1 moves",
+             False)
+        _add(obj, "App::PropertyLength", "PeckDepth", "Peck depth of the canned cycle, 0 = no pecking", 0.0)
+        _add(obj, "App::PropertyFloat", "MinCoverage",
+             "Percentage of the reachable floor the plunges must clear", 99.6)
+        _add(obj, "App::PropertyString", "Summary", "The last plan: plunges per tool, coverage, travel, time",
+             "", mode=1)
+        _add(obj, "App::PropertyString", "PlanData", "The last plan and its input (JSON), read by the companions",
+             "", mode=2)
+
+    def opOnDocumentRestored(self, obj):
+        # Files from older versions lack newer properties.
+        self._addProperties(obj)
+
+    def opSetDefaultValues(self, obj, job):
+        if obj.ToolController and not obj.ToolControllers:
+            obj.ToolControllers = [obj.ToolController]
+
+    def opOnChanged(self, obj, prop):
+        if prop == "ToolControllers" and "Restore" not in obj.State and hasattr(obj, "PlanData"):
+            syncCompanions(obj)
+
+    def opExecute(self, obj):
+        obj.PlanData = ""
+        tcs = _tool_controllers(obj)
+        if tcs and obj.ToolController != tcs[0]:
+            _report(obj, translate("PlungeRough", "the operation's tool controller must be its largest plunger (%s)")
+                    % tcs[0].Label)
+            return
+        faces = []
+        for base, subs in obj.Base:
+            for sub in subs:
+                if not sub.startswith("Face"):
+                    _report(obj, translate("PlungeRough", "%s.%s is not a face: select the pocket's floor face")
+                            % (base.Label, sub))
+                    return
+                faces.append(("%s.%s" % (base.Label, sub), base.Shape.getElement(sub)))
+        if not faces:
+            obj.Summary = translate("PlungeRough", "select the pocket's floor face")
+            return
+        diameters = [float(tc.Tool.Diameter) for tc in tcs]
+        if len(set(diameters)) != len(diameters):
+            _report(obj, translate("PlungeRough", "two plunger tool controllers have the same diameter"))
+            return
+        try:
+            boundary, islands, deviation = geometry.footprint(faces, obj.ChordTolerance.Value)
+            workdir = os.path.join(tempfile.gettempdir(), "plungerough-%s-%s" % (obj.Document.Name, obj.Name))
+            os.makedirs(workdir, exist_ok=True)
+            floor = geometry.floor_spec(faces, obj.FinalDepth.Value, workdir)
+            data = {
+                "version": 1,
+                "boundary": boundary,
+                "islands": islands,
+                "tools": [geometry.tool_spec(tc) for tc in tcs],
+                "top_z": obj.StartDepth.Value,
+                "safe_z": obj.SafeHeight.Value,
+                "floor": floor,
+                # The chords of a discretised free-form wall may lie off it by the
+                # measured deviation: keeping that much more from the walls never gouges.
+                "allowance": {"radial": obj.RadialAllowance.Value + deviation + 1e-6,
+                              "floor": obj.FloorAllowance.Value},
+                "min_coverage": obj.MinCoverage / 100.0,
+            }
+            if obj.SafeHeight.Value > obj.ClearanceHeight.Value:
+                raise ValueError("the safe height is above the clearance height")
+            if obj.StartDepth.Value <= obj.FinalDepth.Value:
+                raise ValueError("the start depth must be above the final depth")
+            plan = planner().plan(data, svg=True)
+        except ValueError as e:
+            _report(obj, str(e))
+            return
+        # FinalDepth is the deepest any plunge goes.
+        for p in plan["plunges"]:
+            p["z"] = max(p["z"], obj.FinalDepth.Value + obj.FloorAllowance.Value)
+        picture = plan.pop("svg")
+        obj.PlanData = json.dumps({"input": data, "plan": plan})
+        with open(os.path.join(workdir, "plan.svg"), "w") as f:
+            f.write(picture)
+        obj.Summary = summary(plan, tcs, obj.SafeHeight.Value)
+        own = [(p["x"], p["y"], p["z"]) for p in plan["plunges"] if p["tool_id"] == int(obj.ToolController.ToolNumber)]
+        self.commandlist.extend(toolCommands(obj, own))
+        PathFeedRate.setFeedRate(self.commandlist, obj.ToolController)
+
+
+def planner():
+    """The core planner (the compiled `plunge` module beside the addon)."""
+    try:
+        import plunge
+    except ImportError as e:
+        raise ValueError("the planner module is not installed (%s); run the README's main command" % e)
+    return plunge
+
+
+def toolCommands(op, plunges):
+    """One tool's plunges as Path commands, with the main operation's heights and cycle."""
+    return generator.generate(plunges, op.ClearanceHeight.Value, op.SafeHeight.Value, op.UseCannedCycle,
+                              op.PeckDepth.Value)
+
+
+def summary(plan, tcs, safe_z):
+    """Plunges per tool, coverage, travel and an estimated time."""
+    s = plan["stats"]
+    by_number = {int(tc.ToolNumber): tc for tc in tcs}
+    minutes = 0.0
+    def per_minute(speed, default):
+        value = speed.getValueAs("mm/min").Value if speed is not None else 0.0
+        return value if value > 0 else default
+
+    for p in plan["plunges"]:
+        tc = by_number.get(p["tool_id"])
+        depth = safe_z - p["z"]
+        feed = per_minute(tc.VertFeed if tc else None, 100.0)
+        rapid = per_minute(tc.VertRapid if tc else None, 3000.0)
+        minutes += depth / feed + depth / rapid
+    minutes += s["travel_length"] / 3000.0 + 0.25 * len(s["per_tool"])  # rapids, tool changes
+    parts = ["T%d %g mm: %d" % (t["tool_id"], t["diameter"], t["count"]) for t in s["per_tool"]]
+    return "%d plunges (%s), coverage %.2f %%, travel %.0f mm, about %.0f min" % (
+        s["plunge_count"], ", ".join(parts), 100 * s["coverage"], s["travel_length"], minutes)
+
+
+class ObjectPlungeRoughTool(PathOp.ObjectOp):
+    """Proxy of a companion operation: one more plunger's plunges of a Plunge Rough plan."""
+
+    def opFeatures(self, obj):
+        return PathOp.FeatureTool | PathOp.FeatureCoolant
+
+    def initOperation(self, obj):
+        if not hasattr(obj, "PlanOperation"):
+            obj.addProperty("App::PropertyLink", "PlanOperation", "Plunge Rough",
+                            QT_TRANSLATE_NOOP("App::Property", "The Plunge Rough operation whose plan this follows"))
+
+    def opExecute(self, obj):
+        main = obj.PlanOperation
+        if main is None or not main.PlanData:
+            return
+        plan = json.loads(main.PlanData)["plan"]
+        number = int(obj.ToolController.ToolNumber)
+        plunges = [(p["x"], p["y"], p["z"]) for p in plan["plunges"] if p["tool_id"] == number]
+        if obj.CoolantMode != main.CoolantMode:
+            obj.CoolantMode = main.CoolantMode
+        self.commandlist.extend(toolCommands(main, plunges))
+        PathFeedRate.setFeedRate(self.commandlist, obj.ToolController)
+
+
+def plan_of(obj):
+    """The last plan of a Plunge Rough operation (CONTRACTS.md section 2), or None."""
+    return json.loads(obj.PlanData)["plan"] if obj.PlanData else None
+
+
+def plan_picture(obj):
+    """Path of the SVG picture of the operation's last plan."""
+    return os.path.join(tempfile.gettempdir(), "plungerough-%s-%s" % (obj.Document.Name, obj.Name), "plan.svg")
+
+
+def companions(obj):
+    """The companion operations of a Plunge Rough operation."""
+    return [o for o in obj.InList if getattr(o, "PlanOperation", None) == obj]
+
+
+def syncCompanions(obj):
+    """One companion per plunger besides the largest, ordered after obj by size."""
+    job = PathUtils.findParentJob(obj)
+    if job is None:
+        return
+    tcs = _tool_controllers(obj)
+    if not tcs:
+        return
+    if obj.ToolController != tcs[0]:
+        obj.ToolController = tcs[0]
+    existing = {o.ToolController: o for o in companions(obj)}
+    wanted = []
+    for tc in tcs[1:]:
+        comp = existing.pop(tc, None)
+        if comp is None:
+            comp = obj.Document.addObject("Path::FeaturePython", obj.Name + "_T")
+            comp.Proxy = ObjectPlungeRoughTool(comp, "PlungeRoughTool", job)
+            comp.PlanOperation = obj
+            comp.ToolController = tc
+        comp.Label = "%s T%d (%g mm)" % (obj.Label, tc.ToolNumber, float(tc.Tool.Diameter))
+        wanted.append(comp)
+    for stale in existing.values():
+        obj.Document.removeObject(stale.Name)
+    group = [o for o in job.Operations.Group if o not in wanted]
+    at = group.index(obj) + 1 if obj in group else len(group)
+    job.Operations.Group = group[:at] + wanted + group[at:]
+    for comp in wanted:
+        comp.touch()
+
+
+def register():
+    """Lets job setup sheets carry defaults for the operation (Init.py calls this)."""
+    from freecad_plugin.compat import PathSetupSheet
+    PathSetupSheet.RegisterOperation("PlungeRough", Create, SetupProperties)
+    PathSetupSheet.RegisterOperation("PlungeRoughTool", CreateCompanion, lambda: [])
+
+
+def CreateCompanion(name, obj=None, parentJob=None):
+    """A companion operation (normally made by syncCompanions)."""
+    if obj is None:
+        obj = FreeCAD.ActiveDocument.addObject("Path::FeaturePython", name)
+    obj.Proxy = ObjectPlungeRoughTool(obj, name, parentJob)
+    return obj
+
+
+def Create(name, obj=None, parentJob=None):
+    """Create(name) ... a Plunge Rough operation, as FreeCAD's own operations do."""
+    if obj is None:
+        obj = FreeCAD.ActiveDocument.addObject("Path::FeaturePython", name)
+    obj.Proxy = ObjectPlungeRough(obj, name, parentJob)
+    return obj

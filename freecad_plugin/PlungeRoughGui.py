@@ -1,0 +1,238 @@
+"""The Plunge Rough operation's GUI: command, view providers and task panel page.
+
+The command and its icon come from this addon, not from FreeCAD's Qt resources,
+so it brings its own view provider (icon, face selection gate) and creation
+function; the page is loaded from resources/panels/PlungeRoughEdit.ui.
+"""
+import os
+
+import FreeCAD
+import FreeCADGui
+from PySide import QtCore, QtGui
+
+from freecad_plugin import PlungeRough
+from freecad_plugin.compat import PathLog, PathUtils, gui_modules
+
+PathOpGui, PathSelection = gui_modules()
+try:
+    import PathScripts.PathGui as PathGui
+except ImportError:  # 0.21+
+    import Path.Base.Gui.Util as PathGui
+
+translate = FreeCAD.Qt.translate
+
+ADDON = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ICON = os.path.join(ADDON, "resources", "icons", "PlungeRough.svg")
+PANEL = os.path.join(ADDON, "resources", "panels", "PlungeRoughEdit.ui")
+COMMAND = "PlungeRough"
+
+
+class TaskPanelOpPage(PathOpGui.TaskPanelPage):
+    """The operation's own page: plungers, allowances, cycle, the plan's summary."""
+
+    def getForm(self):
+        return FreeCADGui.PySideUic.loadUi(PANEL)
+
+    def initPage(self, obj):
+        self.spins = {
+            "RadialAllowance": PathGui.QuantitySpinBox(self.form.radialAllowance, obj, "RadialAllowance"),
+            "FloorAllowance": PathGui.QuantitySpinBox(self.form.floorAllowance, obj, "FloorAllowance"),
+            "ChordTolerance": PathGui.QuantitySpinBox(self.form.chordTolerance, obj, "ChordTolerance"),
+            "PeckDepth": PathGui.QuantitySpinBox(self.form.peckDepth, obj, "PeckDepth"),
+        }
+
+    def getTitle(self, obj):
+        return translate("PlungeRough", "Plunge Rough")
+
+    def _jobToolControllers(self):
+        job = PathUtils.findParentJob(self.obj)
+        return list(job.Tools.Group) if job else []
+
+    def getFields(self, obj):
+        """UI to object."""
+        for spin in self.spins.values():
+            spin.updateProperty()
+        if obj.UseCannedCycle != self.form.useCannedCycle.isChecked():
+            obj.UseCannedCycle = self.form.useCannedCycle.isChecked()
+        if abs(obj.MinCoverage - self.form.minCoverage.value()) > 1e-9:
+            obj.MinCoverage = self.form.minCoverage.value()
+        self.updateCoolant(obj, self.form.coolantController)
+        chosen = []
+        for i, tc in enumerate(self._jobToolControllers()):
+            if self.form.toolControllers.item(i).checkState() == QtCore.Qt.Checked:
+                chosen.append(tc)
+        if chosen and chosen != list(obj.ToolControllers):
+            obj.ToolControllers = chosen
+
+    def setFields(self, obj):
+        """Object to UI."""
+        for spin in self.spins.values():
+            spin.updateSpinBox()
+        self.form.useCannedCycle.setChecked(obj.UseCannedCycle)
+        self.form.minCoverage.setValue(obj.MinCoverage)
+        self.setupCoolant(obj, self.form.coolantController)
+        self.form.toolControllers.blockSignals(True)
+        self.form.toolControllers.clear()
+        for tc in self._jobToolControllers():
+            item = QtGui.QListWidgetItem("T%d  %s  (%s)" % (tc.ToolNumber, tc.Label, tc.Tool.Diameter.UserString))
+            item.setFlags(item.flags() | QtCore.Qt.ItemIsUserCheckable)
+            item.setCheckState(QtCore.Qt.Checked if tc in obj.ToolControllers else QtCore.Qt.Unchecked)
+            self.form.toolControllers.addItem(item)
+        self.form.toolControllers.blockSignals(False)
+        self.form.summary.setText(obj.Summary)
+
+    def getSignalsForUpdate(self, obj):
+        return [
+            self.form.radialAllowance.editingFinished,
+            self.form.floorAllowance.editingFinished,
+            self.form.chordTolerance.editingFinished,
+            self.form.peckDepth.editingFinished,
+            self.form.useCannedCycle.stateChanged,
+            self.form.minCoverage.editingFinished,
+            self.form.coolantController.currentIndexChanged,
+            self.form.toolControllers.itemChanged,
+        ]
+
+    def updateData(self, obj, prop):
+        if prop == "Summary":
+            self.form.summary.setText(obj.Summary)
+
+
+class ViewProvider(PathOpGui.ViewProvider):
+    """The operation's view provider with the addon's icon and a face selection gate."""
+
+    def getIcon(self):
+        return ICON
+
+    def getSelectionFactory(self):
+        return PathSelection.pocketselect
+
+    def onDelete(self, vobj, arg2=None):
+        # The companion operations belong to this one.
+        for comp in PlungeRough.companions(vobj.Object):
+            comp.Document.removeObject(comp.Name)
+        return super().onDelete(vobj, arg2)
+
+
+class CompanionViewProvider:
+    """View provider of the companion operations: the icon; editing opens the main op."""
+
+    def __init__(self, vobj):
+        vobj.Proxy = self
+
+    def attach(self, vobj):
+        self.Object = vobj.Object
+
+    def getIcon(self):
+        return ICON
+
+    def setEdit(self, vobj, mode=0):
+        main = vobj.Object.PlanOperation
+        if main is not None and main.ViewObject:
+            main.ViewObject.Document.setEdit(main.ViewObject, 0)
+        return False
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+
+def _adoptCompanions(obj):
+    for comp in PlungeRough.companions(obj):
+        if comp.ViewObject and not isinstance(comp.ViewObject.Proxy, CompanionViewProvider):
+            CompanionViewProvider(comp.ViewObject)
+
+
+class CommandPlungeRough:
+    """The "Plunge Rough" command of the Path workbench."""
+
+    def __init__(self):
+        self.res = PathOpGui.CommandResources(
+            "PlungeRough", PlungeRough.Create, TaskPanelOpPage, ICON,
+            QtCore.QT_TRANSLATE_NOOP("PlungeRough", "Plunge Rough"), None,
+            QtCore.QT_TRANSLATE_NOOP("PlungeRough", "Rough the selected pocket floor by plunging: packed and "
+                                     "covered plunges of several plunger sizes, short tours, per-plunge depths"))
+
+    def GetResources(self):
+        return {"Pixmap": ICON, "MenuText": self.res.menuText, "ToolTip": self.res.toolTip}
+
+    def IsActive(self):
+        doc = FreeCAD.ActiveDocument
+        return doc is not None and any(o.Name.startswith("Job") for o in doc.Objects)
+
+    def Activated(self):
+        return create(self.res)
+
+
+def create(res):
+    """PathOpGui.Create with this addon's view provider."""
+    doc = FreeCAD.ActiveDocument
+    doc.openTransaction("Create Plunge Rough")
+    try:
+        obj = res.objFactory(res.name, obj=None, parentJob=res.job)
+        if obj.Proxy:
+            obj.ViewObject.Proxy = ViewProvider(obj.ViewObject, res)
+            obj.ViewObject.Visibility = True
+            doc.commitTransaction()
+            obj.ViewObject.Document.setEdit(obj.ViewObject, 0)
+            return obj
+    except Exception as e:  # no tool controller, no job: say so
+        FreeCAD.Console.PrintError("Plunge Rough: %s\n" % e)
+    doc.abortTransaction()
+    doc.recompute()
+    return None
+
+
+class _DocumentObserver:
+    """Gives companion operations made during editing their view provider."""
+
+    def slotRecomputedObject(self, obj):
+        if getattr(obj, "PlanData", None) is not None and isinstance(getattr(obj, "Proxy", None),
+                                                                    PlungeRough.ObjectPlungeRough):
+            _adoptCompanions(obj)
+
+    def slotCreatedObject(self, obj):
+        pass
+
+
+def _action():
+    """The one QAction running the command (a child of the main window)."""
+    mw = FreeCADGui.getMainWindow()
+    action = mw.findChild(QtGui.QAction, "PlungeRoughAction")
+    if action is None:
+        action = QtGui.QAction(QtGui.QIcon(ICON), translate("PlungeRough", "Plunge Rough"), mw)
+        action.setObjectName("PlungeRoughAction")
+        action.setToolTip(CommandPlungeRough().res.toolTip)
+        action.triggered.connect(lambda: FreeCADGui.runCommand(COMMAND))
+    return action
+
+
+def insertIntoPathWorkbench():
+    """Adds the command to the Path menu and the "New Operations" toolbar (FreeCAD
+    rebuilds both when the workbench is activated, so this runs every time)."""
+    mw = FreeCADGui.getMainWindow()
+    action = _action()
+    for bar in mw.findChildren(QtGui.QToolBar):
+        if bar.objectName() == "New Operations" or bar.windowTitle() == "New Operations":
+            if action not in bar.actions():
+                bar.addAction(action)
+    for menu_action in mw.menuBar().actions():
+        if menu_action.text().replace("&", "") == "Path" and menu_action.menu():
+            if action not in menu_action.menu().actions():
+                menu_action.menu().addAction(action)
+
+
+_installed = False
+
+
+def install():
+    """Registers the command and the observer (once) and puts it into the Path
+    workbench's menu and toolbar (InitGui.py calls this when Path is activated)."""
+    global _installed
+    if not _installed:
+        _installed = True
+        FreeCADGui.addCommand(COMMAND, CommandPlungeRough())
+        FreeCAD.addDocumentObserver(_DocumentObserver())
+    insertIntoPathWorkbench()

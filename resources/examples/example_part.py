@@ -1,0 +1,88 @@
+"""The bundled example part (a mould cavity with a free-form wall, a free-form
+island and a B-spline floor) and the Job helpers the demo and the tests share."""
+import math
+
+import FreeCAD
+import Part
+
+from freecad_plugin.compat import PathJob, PathToolBit, PathToolController
+
+V = FreeCAD.Vector
+
+
+def closed_bspline(center, radius_fn, n=24, z=0.0):
+    pts = []
+    for k in range(n):
+        t = 2 * math.pi * k / n
+        r = radius_fn(t)
+        pts.append(V(center[0] + r * math.cos(t), center[1] + r * math.sin(t), z))
+    curve = Part.BSplineCurve()
+    curve.interpolate(pts, PeriodicFlag=True)
+    return Part.Wire([curve.toShape()])
+
+
+def prism(wire, z0, height):
+    face = Part.Face(wire)
+    face.translate(V(0, 0, z0 - face.BoundBox.ZMin))
+    return face.extrude(V(0, 0, height))
+
+
+def freeform_part(sculptured=True):
+    """The example: a 180 x 130 x 40 block with a free-form pocket, a free-form
+    island and a sculptured (B-spline) or flat floor."""
+    block = Part.makeBox(180, 130, 40)
+    outer = closed_bspline((90, 65), lambda t: 58 + 9 * math.cos(2 * t) + 5 * math.sin(3 * t + 0.4), 28)
+    island = closed_bspline((112, 60), lambda t: 13 + 4 * math.cos(2 * t + 0.5), 16)
+    cavity = prism(outer, -5, 60)
+    if sculptured:
+        grid = []
+        for i in range(13):
+            row = []
+            for j in range(10):
+                x, y = -10 + 200 * i / 12, -10 + 150 * j / 9
+                z = (14 + 3 * math.exp(-((x - 60) ** 2 + (y - 70) ** 2) / 500.0)
+                     + 2 * math.exp(-((x - 120) ** 2 + (y - 40) ** 2) / 300.0) + 0.02 * x)
+                row.append(V(x, y, z))
+            grid.append(row)
+        surface = Part.BSplineSurface()
+        surface.interpolate(grid)
+        above = surface.toShape().extrude(V(0, 0, 100))
+        cavity = cavity.common(above)
+    else:
+        cavity = cavity.common(Part.makeBox(300, 300, 100, V(-50, -50, 15)))
+    cavity = cavity.cut(prism(island, -5, 60))
+    return block.cut(cavity).removeSplitter()
+
+
+def floor_face_name(shape, sculptured):
+    """The pocket's floor: the B-spline face, or the lowest horizontal face inside the block."""
+    best = None
+    for i, f in enumerate(shape.Faces):
+        name = "Face%d" % (i + 1)
+        if sculptured:
+            if isinstance(f.Surface, Part.BSplineSurface):
+                return name
+        elif isinstance(f.Surface, Part.Plane) and abs(abs(f.Surface.Axis.z) - 1) < 1e-9:
+            z = f.BoundBox.ZMin
+            if 0 < z < shape.BoundBox.ZMax - 1e-6 and (best is None or z < best[1]):
+                best = (name, z)
+    return best[0] if best else None
+
+
+def make_job(doc, shape, name="Part"):
+    part = doc.addObject("Part::Feature", name)
+    part.Shape = shape
+    doc.recompute()
+    job = PathJob.Create("Job", [part])
+    doc.recompute()
+    return job
+
+
+def add_tool_controller(job, diameter, number, template="5mm_Endmill.fctb"):
+    bit = PathToolBit.Factory.CreateFrom(FreeCAD.getHomePath() + "Mod/Path/Tools/Bit/" + template)
+    bit.Diameter = diameter
+    tc = PathToolController.Create("TC: %g mm plunger" % diameter, tool=bit, toolNumber=number)
+    tc.VertFeed = "150 mm/min"
+    tc.HorizFeed = "600 mm/min"
+    job.Proxy.addToolController(tc)
+    return tc

@@ -1,0 +1,46 @@
+"""Headless FreeCAD tests: run inside freecadcmd (see tests/CMakeLists.txt), which is
+Debian's python3 with FreeCAD's modules. The addon is imported from the source
+tree, the planner from the build tree."""
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+BUILD = os.environ.get("PLUNGE_BUILD_DIR", os.path.join(ROOT, "build"))
+for p in (HERE, ROOT, os.path.join(BUILD, "cpp")):
+    if p not in sys.path:
+        sys.path.insert(0, p)
+
+import FreeCAD  # noqa: E402
+import pytest  # noqa: E402
+
+import parts  # noqa: E402
+from freecad_plugin import PlungeRough  # noqa: E402
+
+PlungeRough.register()
+
+
+@pytest.fixture
+def doc():
+    d = FreeCAD.newDocument("PlungeTest")
+    name = d.Name
+    yield d
+    if name in FreeCAD.listDocuments():
+        FreeCAD.closeDocument(name)
+
+
+def build_op(doc, shape, sculptured, diameters=(20, 12, 6), canned=False, peck=0.0, radial=0.5, floor=0.3):
+    """A job on the shape with one plunger tool controller per diameter and a
+    Plunge Rough op on its floor face, recomputed."""
+    job = parts.make_job(doc, shape)
+    op = PlungeRough.Create("PlungeRough", parentJob=job)
+    tcs = [parts.add_tool_controller(job, d, i + 2) for i, d in enumerate(diameters)]
+    clone = job.Model.Group[0]
+    op.Base = [(clone, [parts.floor_face_name(clone.Shape, sculptured)])]
+    op.RadialAllowance = radial
+    op.FloorAllowance = floor
+    op.UseCannedCycle = canned
+    op.PeckDepth = peck
+    op.ToolControllers = tcs
+    doc.recompute()
+    return job, op, tcs

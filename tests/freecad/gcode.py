@@ -1,0 +1,70 @@
+"""Reading G-code and Path commands back: plunges per tool, rapids and their heights."""
+import re
+
+WORD = re.compile(r"([A-Z])\s*([-+]?[0-9]*\.?[0-9]+)")
+
+
+def parse_gcode(text):
+    """Blocks of posted G-code as (codes, words) with comments removed."""
+    blocks = []
+    for line in text.splitlines():
+        line = re.sub(r"\(.*?\)", "", line).split(";")[0].strip().upper()
+        if not line:
+            continue
+        words = {}
+        codes = []
+        for letter, value in WORD.findall(line):
+            if letter in "GM":
+                codes.append(letter + str(int(float(value))))
+            else:
+                words[letter] = float(value)
+        blocks.append((codes, words))
+    return blocks
+
+
+def replay(blocks, safe_z):
+    """Plunges [(tool, x, y, z)] and rapids that crossed below safe_z, from G-code blocks.
+
+    Understands G0/G1 (modal), G81/G83 with G98 (return to the initial level) and T/M6."""
+    tool = None
+    pending = None
+    x = y = z = None
+    motion = None
+    plunges, low_rapids = [], []
+    canned = None
+    for codes, w in blocks:
+        if "M6" in codes and "T" in w:
+            tool = int(w["T"])
+        elif "T" in w and not codes:
+            pending = int(w["T"])
+        if "M6" in codes and "T" not in w and pending is not None:
+            tool = pending
+        for c in codes:
+            if c in ("G0", "G1", "G81", "G82", "G83"):
+                motion = c
+            if c == "G80":
+                motion = canned = None
+        if not any(k in w for k in "XYZ"):
+            continue
+        nx, ny, nz = w.get("X", x), w.get("Y", y), w.get("Z", z)
+        if motion == "G0":
+            if (nx, ny) != (x, y) and z is not None and z < safe_z - 1e-6:
+                low_rapids.append((x, y, z, nx, ny))
+            x, y, z = nx, ny, nz
+        elif motion == "G1":
+            if nz is not None and z is not None and nz < z and (nx, ny) == (x, y):
+                plunges.append((tool, nx, ny, nz))
+            x, y, z = nx, ny, nz
+        elif motion in ("G81", "G82", "G83"):
+            if canned is None:
+                canned = z  # G98: back to the level where the cycle began
+            plunges.append((tool, nx, ny, nz))
+            x, y = nx, ny
+            z = canned
+    return plunges, low_rapids
+
+
+def path_blocks(op):
+    """An operation's Path commands as blocks."""
+    return [([c.Name], {k.upper(): v for k, v in c.Parameters.items()}) for c in op.Path.Commands
+            if not c.Name.startswith("(")]

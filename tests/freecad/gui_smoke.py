@@ -1,0 +1,112 @@
+"""GUI smoke test, run inside FreeCAD's GUI (tests/freecad/test_gui.py starts it
+under xvfb-run): open the example, activate Path, select the floor face, run
+Plunge Rough from the toolbar, tick the plungers, accept, check, screenshot."""
+import json
+import os
+import sys
+import traceback
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+BUILD = os.environ.get("PLUNGE_BUILD_DIR", os.path.join(ROOT, "build"))
+OUT = os.environ.get("PLUNGE_GUI_OUT", os.path.join(BUILD, "test-artifacts"))
+for p in (os.path.join(ROOT, "resources", "examples"), ROOT, os.path.join(BUILD, "cpp")):
+    sys.path.insert(0, p)
+
+import FreeCAD  # noqa: E402
+import FreeCADGui  # noqa: E402
+from PySide import QtCore, QtGui  # noqa: E402
+
+result = {"ok": False, "steps": []}
+
+
+def step(name):
+    result["steps"].append(name)
+    QtGui.QApplication.processEvents()
+
+
+def main():
+    os.makedirs(OUT, exist_ok=True)
+    # The addon as FreeCAD loads it: InitGui.py's hook on the Path workbench.
+    exec(open(os.path.join(ROOT, "InitGui.py")).read(), {"__name__": "InitGui"})
+    exec(open(os.path.join(ROOT, "Init.py")).read(), {"__name__": "Init"})
+    import example_part
+
+    # Open the example part.
+    doc = FreeCAD.newDocument("PlungeExample")
+    part = doc.addObject("Part::Feature", "Part")
+    part.Shape = example_part.freeform_part(True)
+    doc.recompute()
+    path = os.path.join(OUT, "plunge_example.FCStd")
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    doc = FreeCAD.openDocument(path)
+    FreeCADGui.ActiveDocument.ActiveView.viewIsometric()
+    step("opened example")
+
+    FreeCADGui.activateWorkbench("PathWorkbench")
+    step("path workbench")
+    import PathScripts.PathJobGui as PathJobGui
+
+    job = PathJobGui.Create([doc.getObject("Part")], openTaskPanel=False)
+    tcs = [example_part.add_tool_controller(job, d, n) for d, n in ((20, 2), (12, 3), (6, 4))]
+    doc.recompute()
+    step("job")
+
+    mw = FreeCADGui.getMainWindow()
+    action = mw.findChild(QtGui.QAction, "PlungeRoughAction")
+    bars = [b for b in mw.findChildren(QtGui.QToolBar) if action in b.actions()]
+    menus = [a.text() for a in mw.menuBar().actions() if a.menu() and action in a.menu().actions()]
+    result["toolbar"] = [b.objectName() for b in bars]
+    result["menu"] = menus
+    step("command in toolbar and menu")
+
+    clone = job.Model.Group[0]
+    face = example_part.floor_face_name(clone.Shape, True)
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(doc.Name, clone.Name, face)
+    step("selected " + face)
+
+    action.trigger()  # as the user clicks it
+    step("command run")
+    ops = [o for o in job.Operations.Group if o.Name.startswith("PlungeRough")]
+    op = ops[0]
+    panel = op.ViewObject.Proxy.panel
+    page = panel.featurePages[-1]
+    for i in range(page.form.toolControllers.count()):
+        item = page.form.toolControllers.item(i)
+        if any(item.text().startswith("T%d " % tc.ToolNumber) for tc in tcs):
+            item.setCheckState(QtCore.Qt.Checked)
+        else:
+            item.setCheckState(QtCore.Qt.Unchecked)
+    page.form.radialAllowance.setProperty("rawValue", 0.5)
+    page.form.radialAllowance.editingFinished.emit()
+    step("panel filled")
+    result["base"] = [sub for _, subs in op.Base for sub in subs]
+    panel.accept()
+    doc.recompute()
+    step("accepted")
+
+    result["operations"] = [(o.Label, float(o.ToolController.Tool.Diameter),
+                             sum(1 for c in o.Path.Commands if c.Name == "G1"))
+                            for o in job.Operations.Group]
+    result["summary"] = op.Summary
+    result["radial"] = op.RadialAllowance.Value
+    result["icon"] = op.ViewObject.Proxy.getIcon()
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.ActiveDocument.ActiveView.fitAll()
+    QtGui.QApplication.processEvents()
+    mw.grab().save(os.path.join(OUT, "plunge_rough_gui.png"))
+    FreeCADGui.ActiveDocument.ActiveView.saveImage(os.path.join(OUT, "plunge_rough_3d.png"), 1000, 700, "White")
+    step("screenshots")
+    result["ok"] = True
+
+
+try:
+    main()
+except Exception:
+    result["error"] = traceback.format_exc()
+finally:
+    with open(os.path.join(OUT, "gui_result.json"), "w") as f:
+        json.dump(result, f, indent=1)
+    os._exit(0)

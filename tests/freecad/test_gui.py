@@ -1,0 +1,36 @@
+"""The op through FreeCAD's GUI under a virtual display (xvfb-run): the command
+sits in the Path toolbar and menu, creates the op from the selected face, the task
+panel is accepted, the op has paths, and a screenshot is kept."""
+import json
+import os
+import shutil
+import subprocess
+
+import pytest
+
+from conftest import BUILD, HERE
+
+pytestmark = pytest.mark.skipif(not shutil.which("xvfb-run") or not shutil.which("freecad"),
+                                reason="needs xvfb-run and FreeCAD's GUI")
+
+
+def test_gui_smoke():
+    out = os.path.join(BUILD, "test-artifacts")
+    os.makedirs(out, exist_ok=True)
+    result_file = os.path.join(out, "gui_result.json")
+    if os.path.exists(result_file):
+        os.remove(result_file)
+    env = dict(os.environ, PLUNGE_BUILD_DIR=BUILD, PLUNGE_GUI_OUT=out, QT_QPA_PLATFORM="xcb")
+    subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24", "freecad", os.path.join(HERE, "gui_smoke.py")],
+                   env=env, timeout=600, capture_output=True)
+    with open(result_file) as f:
+        result = json.load(f)
+    assert result["ok"], result.get("error")
+    assert result["toolbar"] == ["New Operations"] and result["menu"]
+    assert result["base"] and result["base"][0].startswith("Face")
+    ops = result["operations"]
+    assert [d for _, d, _ in ops] == [20, 12, 6]
+    assert all(n > 0 for _, _, n in ops)  # every tool plunges
+    assert result["radial"] == 0.5  # the panel's value reached the op
+    assert "coverage" in result["summary"]
+    assert os.path.getsize(os.path.join(out, "plunge_rough_gui.png")) > 10000

@@ -1,0 +1,163 @@
+"""The Plunge Rough operation headless: paths checked against the part's own geometry."""
+import json
+import math
+
+import FreeCAD
+import Part
+import pytest
+
+import parts
+from conftest import build_op
+from gcode import path_blocks, replay
+from freecad_plugin import PlungeRough
+
+
+def plunges_of(job):
+    """Every plunge of the job's operations: (tool controller, x, y, z), in order."""
+    out = []
+    for op in job.Operations.Group:
+        tc = op.ToolController
+        plunges, low = replay(path_blocks(op), op.SafeHeight.Value if hasattr(op, "SafeHeight") else -1e9)
+        out += [(tc, x, y, z) for _, x, y, z in plunges]
+    return out
+
+
+def assert_no_gouge(part, floor_names, plunges, top, radial, floor, every=1):
+    """No gouge, from the part's own geometry: the plunger's cylinder from its stop
+    height minus the floor allowance up to the top holds no material, and its axis
+    keeps radius + radial allowance from every face but the floor."""
+    walls = [f for i, f in enumerate(part.Faces) if "Face%d" % (i + 1) not in floor_names]
+    for tc, x, y, z in plunges[::every]:
+        r = float(tc.Tool.Diameter) / 2
+        bottom = z - floor + 1e-4
+        cyl = Part.makeCylinder(r - 1e-4, top - bottom, FreeCAD.Vector(x, y, bottom))
+        assert part.common(cyl).Volume < 1e-6, ("floor or wall", tc.Label, x, y, z)
+        axis = Part.makeLine(FreeCAD.Vector(x, y, z + 0.5), FreeCAD.Vector(x, y, top))
+        clearance = min(axis.distToShape(w)[0] for w in walls)
+        assert clearance >= r + radial - 1e-4, ("wall", tc.Label, x, y, clearance)
+
+
+def assert_touches(part, plunges, floor, every=1):
+    """Tight: 0.01 mm lower, the plunger's disk meets the floor."""
+    for tc, x, y, z in plunges[::every]:
+        r = float(tc.Tool.Diameter) / 2 - 1e-3
+        cyl = Part.makeCylinder(r, 0.5, FreeCAD.Vector(x, y, z - floor - 0.01))
+        assert part.common(cyl).Volume > 0, (tc.Label, x, y, z)
+
+
+def floor_max(face, x, y, r, rings=6, spokes=72):
+    """Highest point of the floor face under the disk, by sectioning vertical lines."""
+    best = -math.inf
+    for i in range(rings + 1):
+        rr = r * i / rings
+        for k in range(spokes if i else 1):
+            t = 2 * math.pi * k / spokes
+            px, py = x + rr * math.cos(t), y + rr * math.sin(t)
+            line = Part.makeLine(FreeCAD.Vector(px, py, -100), FreeCAD.Vector(px, py, 100))
+            for v in face.section(line).Vertexes:
+                best = max(best, v.Point.z)
+    return best
+
+
+def test_flat_pocket_with_islands(doc):
+    job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
+    ops = job.Operations.Group
+    # One operation per plunger, largest first, each with its own tool controller.
+    assert [float(o.ToolController.Tool.Diameter) for o in ops] == [20, 12, 6]
+    assert ops[0] == op and all(getattr(o, "PlanOperation", op) == op for o in ops)
+    plan = PlungeRough.plan_of(op)
+    plunges = plunges_of(job)
+    assert len(plunges) == plan["stats"]["plunge_count"] > 0
+    # The plan's tool for every plunge is the tool that makes it.
+    numbers = [int(tc.ToolNumber) for tc, *_ in plunges]
+    assert numbers == [p["tool_id"] for p in plan["plunges"]]
+    for o in ops:
+        _, low = replay(path_blocks(o), op.SafeHeight.Value)
+        assert not low, "rapid below the safe height in " + o.Label
+        assert o.Path.Commands[-1].Parameters.get("Z") == op.ClearanceHeight.Value
+    part = job.Model.Group[0].Shape
+    assert all(abs(z - (10 + 0.3)) < 1e-9 for *_, z in plunges)  # floor 10 mm + allowance
+    assert_no_gouge(part, op.Base[0][1], plunges, op.StartDepth.Value, 0.5, 0.3)
+    assert_touches(part, plunges, 0.3, every=5)
+    assert plan["stats"]["coverage"] >= 0.995
+    assert "coverage" in op.Summary and "min" in op.Summary
+
+
+def test_sculptured_floor_and_freeform_walls(doc):
+    job, op, tcs = build_op(doc, parts.freeform_part(True), sculptured=True)
+    plunges = plunges_of(job)
+    plan = PlungeRough.plan_of(op)
+    assert len(plunges) == plan["stats"]["plunge_count"]
+    zs = [z for *_, z in plunges]
+    assert max(zs) - min(zs) > 2  # depths follow the floor
+    part = job.Model.Group[0].Shape
+    assert_no_gouge(part, op.Base[0][1], plunges, op.StartDepth.Value, 0.5, 0.3, every=3)
+    # Tight: within 0.01 mm of the highest floor point under each disk (sampled
+    # sections of the floor face can only see lower points than the true maximum).
+    face = part.getElement(op.Base[0][1][0])
+    for tc, x, y, z in plunges[::15]:
+        highest = floor_max(face, x, y, float(tc.Tool.Diameter) / 2)
+        assert z - 0.3 - highest < 0.01, (tc.Label, x, y, z, highest)
+        assert z - 0.3 - highest > -1e-6, (tc.Label, x, y, z, highest)
+
+
+def test_canned_cycles_with_pecking(doc):
+    job, op, _ = build_op(doc, parts.islands_part(), sculptured=False, canned=True, peck=4.0)
+    names = [c.Name for c in op.Path.Commands]
+    assert "G98" in names and "G80" in names and "G83" in names and "G1" not in names
+    cycle = next(c for c in op.Path.Commands if c.Name == "G83")
+    assert cycle.Parameters["Q"] == 4.0 and cycle.Parameters["R"] == op.SafeHeight.Value
+    assert cycle.Parameters["F"] == op.ToolController.VertFeed.Value  # plunging at the vertical feed
+
+
+def test_unusable_selections_give_a_message_and_no_path(doc):
+    job, op, _ = build_op(doc, parts.islands_part(), sculptured=False)
+    clone = job.Model.Group[0]
+    vertical = next("Face%d" % (i + 1) for i, f in enumerate(clone.Shape.Faces)
+                    if isinstance(f.Surface, Part.Plane) and abs(f.Surface.Axis.z) < 1e-9)
+    for sub, message in [(vertical, "vertical"), ("Edge1", "not a face")]:
+        op.Base = [(clone, [sub])]
+        doc.recompute()
+        assert message in op.Summary
+        assert not any(c.Name in ("G1", "G81", "G83") for c in op.Path.Commands)
+        assert op.PlanData == ""
+
+
+def test_bad_settings_give_a_message(doc):
+    job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
+    op.RadialAllowance = 45  # nothing fits any more
+    doc.recompute()
+    assert "no tool fits" in op.Summary
+    assert not any(c.Name == "G1" for c in op.Path.Commands)
+
+
+def test_tool_controllers_change(doc):
+    job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
+    op.ToolControllers = tcs[:2]
+    doc.recompute()
+    assert [float(o.ToolController.Tool.Diameter) for o in job.Operations.Group] == [20, 12]
+    op.ToolControllers = [tcs[2], tcs[1]]  # any order; the largest becomes the op's own
+    doc.recompute()
+    assert float(op.ToolController.Tool.Diameter) == 12
+    assert [float(o.ToolController.Tool.Diameter) for o in job.Operations.Group] == [12, 6]
+
+
+def test_saved_and_restored(doc, tmp_path):
+    job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
+    count = PlungeRough.plan_of(op)["stats"]["plunge_count"]
+    name = op.Name
+    path = str(tmp_path / "plunge.FCStd")
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    again = FreeCAD.openDocument(path)
+    try:
+        op2 = again.getObject(name)
+        assert isinstance(op2.Proxy, PlungeRough.ObjectPlungeRough)
+        assert op2.RadialAllowance.Value == 0.5 and len(op2.ToolControllers) == 3
+        op2.touch()
+        again.recompute()
+        assert PlungeRough.plan_of(op2)["stats"]["plunge_count"] == count
+        assert [o.Label for o in again.getObject("Job").Operations.Group][1:] == \
+            ["PlungeRough T3 (12 mm)", "PlungeRough T4 (6 mm)"]
+    finally:
+        FreeCAD.closeDocument(again.Name)

@@ -1,0 +1,62 @@
+"""Posting a job with Plunge Rough: the G-code parsed back must be the plan."""
+import json
+import os
+
+import pytest
+
+import parts
+from conftest import build_op
+from freecad_plugin import PlungeRough
+from gcode import parse_gcode, replay
+from freecad_plugin.compat import post_module
+
+PathPost = pytest.importorskip("PathScripts.PathPost")
+
+
+def post_job(job, name, args, tmp_path):
+    """The job's G-code through the named post processor, as the Job's post command does."""
+    gcode = []
+    for objs in PathPost.CommandPathPost().buildPostList(job):
+        if name == "grbl":  # grbl_post always writes its file (0.20) and returns None
+            out = str(tmp_path / "grbl.nc")
+            post_module(name).export(objs, out, args)
+            with open(out) as f:
+                gcode.append(f.read())
+        else:
+            gcode.append(post_module(name).export(objs, "-", args))
+    return "\n".join(gcode)
+
+
+def plan_plunges(op):
+    return [(p["tool_id"], p["x"], p["y"], p["z"]) for p in PlungeRough.plan_of(op)["plunges"]]
+
+
+def assert_matches(posted, expected):
+    assert len(posted) == len(expected)
+    for (t1, x1, y1, z1), (t2, x2, y2, z2) in zip(posted, expected):
+        assert t1 == t2 and abs(x1 - x2) < 2e-3 and abs(y1 - y2) < 2e-3 and abs(z1 - z2) < 2e-3
+
+
+@pytest.mark.parametrize("canned", [False, True])
+def test_linuxcnc(doc, tmp_path, canned):
+    job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False, canned=canned, peck=3.0 if canned else 0.0)
+    text = post_job(job, "linuxcnc", "--no-header --no-show-editor", tmp_path)
+    blocks = parse_gcode(text)
+    plunges, low = replay(blocks, op.SafeHeight.Value)
+    assert not low, "a rapid crosses below the safe height"
+    assert_matches(plunges, plan_plunges(op))
+    # A tool change before each tool's plunges, largest first.
+    changes = [int(w["T"]) for codes, w in blocks if "M6" in codes and "T" in w]
+    assert changes == [int(tc.ToolNumber) for tc in tcs]
+    if canned:
+        assert "G83" in text and "G80" in text and ("G98" in text or "G99" in text)
+
+
+def test_grbl_translates_cycles(doc, tmp_path):
+    job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False, canned=True)
+    text = post_job(job, "grbl", "--no-header --no-show-editor --translate_drill --tool-change", tmp_path)
+    blocks = parse_gcode(text)  # comments removed: grbl_post keeps the cycle as one
+    assert not any(c in ("G81", "G83") for codes, _ in blocks for c in codes)  # Grbl cannot run them
+    plunges, low = replay(blocks, op.SafeHeight.Value)
+    assert not low
+    assert_matches(plunges, plan_plunges(op))

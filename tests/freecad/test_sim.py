@@ -1,0 +1,77 @@
+"""The job in FreeCAD's voxel simulator: each tool cuts its own plunges, and the
+removed volume is what the plan removes."""
+import json
+import math
+
+import FreeCAD
+import Mesh
+import Part
+import Path
+import pytest
+
+import parts
+from conftest import build_op
+from freecad_plugin import PlungeRough
+
+PathSimulator = pytest.importorskip("PathSimulator")
+
+
+def expand(cmds):
+    """Canned cycles as the simulator GUI expands them (it does so itself, too)."""
+    out = []
+    for c in cmds:
+        if c.Name in ("G81", "G82", "G83"):
+            p = c.Parameters
+            out += [Path.Command("G0", {"X": p["X"], "Y": p["Y"], "Z": p["R"]}),
+                    Path.Command("G1", {"X": p["X"], "Y": p["Y"], "Z": p["Z"]}),
+                    Path.Command("G1", {"X": p["X"], "Y": p["Y"], "Z": p["R"]})]
+        elif c.Name in ("G0", "G1"):
+            out.append(c)
+    return out
+
+
+def height_map(meshes, xs, ys, top):
+    """The simulated material's top at every grid point: the highest mesh hit of a
+    downward ray (PathSim's outer and inner meshes are not closed solids)."""
+    h = {}
+    for x in xs:
+        for y in ys:
+            z = None
+            for m in meshes:
+                for point in m.nearestFacetOnRay((x, y, top + 10), (0, 0, -1)).values():
+                    z = point[2] if z is None else max(z, point[2])
+            h[(x, y)] = z
+    return h
+
+
+@pytest.mark.parametrize("canned", [False, True])
+def test_each_tool_cuts_its_own_plunges(doc, canned):
+    job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False, diameters=(24, 14), canned=canned)
+    stock = job.Stock.Shape
+    resolution = 0.5
+    sim = PathSimulator.PathSim()
+    sim.BeginSimulation(stock, resolution)
+    for o in job.Operations.Group:
+        d = float(o.ToolController.Tool.Diameter)
+        sim.SetToolShape(Part.makeCylinder(d / 2, 40), 0.05)  # this operation's own tool
+        pos = FreeCAD.Placement(FreeCAD.Vector(0, 0, op.ClearanceHeight.Value), FreeCAD.Rotation())
+        for c in expand(o.Path.Commands):
+            pos = sim.ApplyCommand(pos, c)
+    meshes = [Mesh.Mesh(m) for m in sim.GetResultMesh()]
+    # What the plan removes: down to the lowest stop of the disks over each point.
+    plan = PlungeRough.plan_of(op)["plunges"]
+    box = stock.BoundBox
+    xs = [box.XMin + 0.5 + i for i in range(int(box.XLength) - 1)]
+    ys = [box.YMin + 0.5 + j for j in range(int(box.YLength) - 1)]
+    simulated = height_map(meshes, xs, ys, box.ZMax)
+    compared = wrong = 0
+    for (x, y), z in simulated.items():
+        edges = [abs(math.hypot(x - p["x"], y - p["y"]) - p["diameter"] / 2) for p in plan]
+        if min(edges) < 2 * resolution:
+            continue  # a voxel's width from a disk's edge: either answer is right
+        inside = [p["z"] for p in plan if math.hypot(x - p["x"], y - p["y"]) < p["diameter"] / 2]
+        expected = min(inside) if inside else box.ZMax
+        compared += 1
+        wrong += z is None or abs(z - expected) > resolution
+    assert compared > 5000
+    assert wrong <= 0.005 * compared, (wrong, compared)
