@@ -8,7 +8,8 @@ PACKAGES="cmake g++ make pkg-config
   libpolyclipping-dev libboost-dev libcgal-dev nlohmann-json3-dev libcli11-dev
   libeigen3-dev libmuparser-dev libtbb-dev
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
-  pybind11-dev python3-dev libgtest-dev python3-pytest python3-shapely"
+  pybind11-dev python3-dev libgtest-dev python3-pytest python3-shapely
+  freecad xvfb xauth libgl1-mesa-dri"
 
 missing=""
 for p in $PACKAGES; do

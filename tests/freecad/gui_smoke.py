@@ -18,15 +18,48 @@ import FreeCADGui  # noqa: E402
 from PySide import QtCore, QtGui  # noqa: E402
 
 result = {"ok": False, "steps": []}
+# The tool controller to answer FreeCAD's "Choose a Tool Controller" dialog with
+# (it asks when the job has several), as the user would: the largest plunger.
+answer = {"tc": None}
+
+
+def save():
+    with open(os.path.join(OUT, "gui_result.json"), "w") as f:
+        json.dump(result, f, indent=1)
 
 
 def step(name):
+    # Written after every step so a hang shows how far the GUI got.
     result["steps"].append(name)
+    save()
     QtGui.QApplication.processEvents()
+
+
+def watch_dialogs():
+    """A modal dialog would block this script forever: record its text, close it,
+    and let the test fail on it instead of timing out."""
+    w = QtGui.QApplication.activeModalWidget()
+    if w is not None and w.windowTitle() == "Choose a Tool Controller" and answer["tc"]:
+        combo = w.findChild(QtGui.QComboBox, "uiToolController")
+        combo.setCurrentIndex(combo.findText(answer["tc"]))
+        result["chose"] = combo.currentText()
+        w.accept()
+    elif w is not None:
+        texts = [l.text() for l in w.findChildren(QtGui.QLabel) if l.text()]
+        result.setdefault("dialogs", []).append("%s: %s" % (w.windowTitle(), " | ".join(texts)[:500]))
+        save()
+        w.close()
 
 
 def main():
     os.makedirs(OUT, exist_ok=True)
+    timer = QtCore.QTimer()
+    timer.timeout.connect(watch_dialogs)
+    timer.start(2000)
+    # A machinist's unit schema (mm, mm/min): otherwise Path warns in a modal box
+    # on activation.
+    FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Units").SetInt("UserSchema", 6)
+    FreeCAD.Units.setSchema(6)
     # The addon as FreeCAD loads it: InitGui.py's hook on the Path workbench.
     exec(open(os.path.join(ROOT, "InitGui.py")).read(), {"__name__": "InitGui"})
     exec(open(os.path.join(ROOT, "Init.py")).read(), {"__name__": "Init"})
@@ -67,6 +100,7 @@ def main():
     FreeCADGui.Selection.addSelection(doc.Name, clone.Name, face)
     step("selected " + face)
 
+    answer["tc"] = tcs[0].Label
     action.trigger()  # as the user clicks it
     step("command run")
     ops = [o for o in job.Operations.Group if o.Name.startswith("PlungeRough")]
@@ -94,9 +128,13 @@ def main():
     result["radial"] = op.RadialAllowance.Value
     result["icon"] = op.ViewObject.Proxy.getIcon()
     FreeCADGui.Selection.clearSelection()
+    FreeCADGui.ActiveDocument.scrollToTreeItem(op.ViewObject)  # show the operations in the tree
+    FreeCADGui.Selection.addSelection(op)
     FreeCADGui.ActiveDocument.ActiveView.fitAll()
-    QtGui.QApplication.processEvents()
-    mw.grab().save(os.path.join(OUT, "plunge_rough_gui.png"))
+    for _ in range(20):
+        QtGui.QApplication.processEvents()
+    # The screen, not mw.grab(): the 3D view is OpenGL and only the screen has it.
+    QtGui.QApplication.primaryScreen().grabWindow(0).save(os.path.join(OUT, "plunge_rough_gui.png"))
     FreeCADGui.ActiveDocument.ActiveView.saveImage(os.path.join(OUT, "plunge_rough_3d.png"), 1000, 700, "White")
     step("screenshots")
     result["ok"] = True
@@ -107,6 +145,5 @@ try:
 except Exception:
     result["error"] = traceback.format_exc()
 finally:
-    with open(os.path.join(OUT, "gui_result.json"), "w") as f:
-        json.dump(result, f, indent=1)
+    save()
     os._exit(0)

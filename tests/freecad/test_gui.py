@@ -20,12 +20,16 @@ def test_gui_smoke():
     result_file = os.path.join(out, "gui_result.json")
     if os.path.exists(result_file):
         os.remove(result_file)
-    env = dict(os.environ, PLUNGE_BUILD_DIR=BUILD, PLUNGE_GUI_OUT=out, QT_QPA_PLATFORM="xcb")
+    # QtWebEngine (FreeCAD's start page) refuses to start as root without this.
+    env = dict(os.environ, PLUNGE_BUILD_DIR=BUILD, PLUNGE_GUI_OUT=out, QT_QPA_PLATFORM="xcb",
+               QTWEBENGINE_DISABLE_SANDBOX="1")
     subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24", "freecad", os.path.join(HERE, "gui_smoke.py")],
                    env=env, timeout=600, capture_output=True)
     with open(result_file) as f:
         result = json.load(f)
-    assert result["ok"], result.get("error")
+    assert result["ok"], result.get("error") or result["steps"]
+    assert not result.get("dialogs"), result["dialogs"]  # no unexpected modal dialog
+    assert result["chose"].startswith("TC: 20")  # FreeCAD's tool controller chooser was answered
     assert result["toolbar"] == ["New Operations"] and result["menu"]
     assert result["base"] and result["base"][0].startswith("Face")
     ops = result["operations"]
