@@ -1,11 +1,6 @@
-# PlungeRough FreeCAD addon: headless initialisation (App side, runs in freecadcmd too).
-# Registers the Plunge Rough operation with the Path setup sheets. The compiled
-# planner (`plunge`) sits beside this file in the installed addon folder.
-try:
-    from freecad_plugin import PlungeRough as _PlungeRough
-
-    _PlungeRough.register()
-except Exception as e:  # never break FreeCAD's start-up
-    import FreeCAD
-
-    FreeCAD.Console.PrintWarning("PlungeRough: not loaded (%s)\n" % e)
+# PlungeRough FreeCAD addon: headless initialisation (runs in freecadcmd too).
+# Nothing to do yet at this point: FreeCAD's Path modules cannot be imported
+# while FreeCAD is still starting (FreeCAD.GuiUp is not set), so the operation
+# registers with the job setup sheets when freecad_plugin.PlungeRough is first
+# imported (creating the op, opening a document that holds one, or the GUI
+# command). The compiled planner (`plunge`) sits beside this file.

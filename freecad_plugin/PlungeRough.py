@@ -285,3 +285,6 @@ def Create(name, obj=None, parentJob=None):
         obj = FreeCAD.ActiveDocument.addObject("Path::FeaturePython", name)
     obj.Proxy = ObjectPlungeRough(obj, name, parentJob)
     return obj
+
+
+register()

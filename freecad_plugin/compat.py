@@ -35,3 +35,8 @@ def gui_modules():
 def post_module(name):
     """A post processor module by its short name ("linuxcnc", "grbl")."""
     return _first("Path.Post.scripts.%s_post" % name, "PathScripts.post.%s_post" % name)
+
+
+def post_command_module():
+    """The module of the Job's post command (buildPostList), imported on demand."""
+    return _first("Path.Post.Command", "PathScripts.PathPost")

@@ -346,6 +346,7 @@ class Coverer {
     const clip::Paths disk{clip::diskPath({c, r}, kDiskChord, true)};
     for (int id : piecesNear({c.x - r, c.y - r}, {c.x + r, c.y + r})) {
       clip::Paths rest = clip::boolean(pieces_[id].poly, disk, ClipperLib::ctDifference);
+      if (clip::area(rest) >= pieces_[id].area) continue;  // untouched: keep it and its candidates
       killPiece(id);
       for (clip::Paths& part : clip::components(rest)) addPiece(std::move(part));
     }
@@ -354,7 +355,10 @@ class Coverer {
   // Uncovered area a disk would cut. Large pieces (long strips along walls) are
   // cut once into cells, so that each evaluation clips only the cells in reach.
   double gainOf(Vec2 c, double r) const {
-    const clip::Paths disk{clip::diskPath({c, r}, 4 * kDiskChord, true)};  // enough to rank candidates
+    // Coarse but inscribed: inside the polygon addDisk cuts with, so a disk is only
+    // placed when it really removes what it was ranked by (no endless re-placing of
+    // a disk whose gain was a polygon artefact).
+    const clip::Paths disk{clip::diskPath({c, r}, 4 * kDiskChord, false)};
     const Vec2 lo{c.x - r, c.y - r}, hi{c.x + r, c.y + r};
     auto cut = [&](const clip::Paths& poly, double area, Vec2 plo, Vec2 phi) {
       const bool within = dist(c, plo) <= r && dist(c, phi) <= r && dist(c, {plo.x, phi.y}) <= r &&
@@ -507,7 +511,10 @@ class Coverer {
   void anchorsOf(const clip::Paths& p, int depth, std::vector<Vec2>& out) const {
     const Circle mec = minEnclosingCircle(verticesOf(p));
     out.push_back(mec.c);
-    if (mec.r <= rMax_ || depth >= 6) return;
+    // Split until the smallest tool could take a part whole: a crescent left
+    // beside a plunge has the same enclosing circle as the piece it came from,
+    // whose centre that plunge already took.
+    if (mec.r <= rMin_ || depth >= 6) return;
     for (const clip::Paths& part : splitInHalves(p, mec.c))
       if (clip::area(part) >= crumb_) anchorsOf(part, depth + 1, out);
   }

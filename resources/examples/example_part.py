@@ -5,7 +5,8 @@ import math
 import FreeCAD
 import Part
 
-from freecad_plugin.compat import PathJob, PathToolBit, PathToolController
+from freecad_plugin import PlungeRough
+from freecad_plugin.compat import PathJob, PathToolBit, PathToolController, post_module
 
 V = FreeCAD.Vector
 
@@ -86,3 +87,37 @@ def add_tool_controller(job, diameter, number, template="5mm_Endmill.fctb"):
     tc.HorizFeed = "600 mm/min"
     job.Proxy.addToolController(tc)
     return tc
+
+
+def add_plunge_rough(job, face, diameters=(20, 12, 6), **properties):
+    """A Plunge Rough operation on the job's model face with one plunger tool
+    controller per diameter (tool numbers from 2), recomputed. Tool controllers are
+    added after the op: FreeCAD 0.20 asks the user to choose one when there are
+    several, which fails headless."""
+    doc = job.Document
+    op = PlungeRough.Create("PlungeRough", parentJob=job)
+    tcs = [add_tool_controller(job, d, i + 2) for i, d in enumerate(diameters)]
+    clone = job.Model.Group[0]
+    op.Base = [(clone, [face])]
+    for name, value in properties.items():
+        setattr(op, name, value)
+    op.ToolControllers = tcs
+    doc.recompute()
+    return op, tcs
+
+
+def post_job(job, name, args, scratch):
+    """The job's G-code through the named post processor, as the Job's post command
+    does; scratch is a folder for posts that insist on writing a file."""
+    import os
+    from freecad_plugin.compat import post_command_module
+    gcode = []
+    for objs in post_command_module().CommandPathPost().buildPostList(job):
+        if name == "grbl":  # grbl_post always writes its file (0.20) and returns None
+            out = os.path.join(str(scratch), "grbl.nc")
+            post_module(name).export(objs, out, args)
+            with open(out) as f:
+                gcode.append(f.read())
+        else:
+            gcode.append(post_module(name).export(objs, "-", args))
+    return "\n".join(gcode)

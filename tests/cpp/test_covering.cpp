@@ -114,3 +114,20 @@ TEST(Covering, ThesisContactRatioAlsoReachesTheTarget) {
   const CoverResult res = coverRegion(region, radii, packed, {0.0, 0.996});
   EXPECT_GE(measuredCoverage(region, 3, 0.0, res.disks), 0.995);
 }
+
+// Small pockets, a few tool diameters across: the covering once re-placed a disk
+// forever when its ranked gain was a polygon artefact (60 x 40, radii 8 and 3).
+// Every size must finish, reach the target, and need no more plunges than
+// covering everything with the smallest tool would (interior plus one wall row).
+TEST(Covering, SmallRectanglesFinishWithBoundedPlunges) {
+  const std::vector<double> radii{8, 3};
+  for (double w = 30; w <= 80; w += 10)
+    for (double h = 20; h <= 50; h += 10) {
+      const Region region({{0, 0}, {w, 0}, {w, h}, {0, h}}, {});
+      const auto packed = packMaxHoleDegree(region, radii, {});
+      const CoverResult res = coverRegion(region, radii, packed, {0.0, 0.996});
+      EXPECT_GE(measuredCoverage(region, 3, 0.0, res.disks), 0.995) << w << " x " << h;
+      const double bound = res.accessibleArea / (2.598 * 9) + 2 * (w + h) / 3;
+      EXPECT_LE(static_cast<double>(res.disks.size()), bound) << w << " x " << h;
+    }
+}

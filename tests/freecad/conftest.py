@@ -17,7 +17,6 @@ import pytest  # noqa: E402
 import parts  # noqa: E402
 from freecad_plugin import PlungeRough  # noqa: E402
 
-PlungeRough.register()
 
 
 @pytest.fixture
@@ -33,14 +32,7 @@ def build_op(doc, shape, sculptured, diameters=(20, 12, 6), canned=False, peck=0
     """A job on the shape with one plunger tool controller per diameter and a
     Plunge Rough op on its floor face, recomputed."""
     job = parts.make_job(doc, shape)
-    op = PlungeRough.Create("PlungeRough", parentJob=job)
-    tcs = [parts.add_tool_controller(job, d, i + 2) for i, d in enumerate(diameters)]
-    clone = job.Model.Group[0]
-    op.Base = [(clone, [parts.floor_face_name(clone.Shape, sculptured)])]
-    op.RadialAllowance = radial
-    op.FloorAllowance = floor
-    op.UseCannedCycle = canned
-    op.PeckDepth = peck
-    op.ToolControllers = tcs
-    doc.recompute()
+    op, tcs = parts.add_plunge_rough(job, parts.floor_face_name(job.Model.Group[0].Shape, sculptured), diameters,
+                                     RadialAllowance=radial, FloorAllowance=floor, UseCannedCycle=canned,
+                                     PeckDepth=peck)
     return job, op, tcs

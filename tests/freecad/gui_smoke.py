@@ -62,7 +62,6 @@ def main():
     FreeCAD.Units.setSchema(6)
     # The addon as FreeCAD loads it: InitGui.py's hook on the Path workbench.
     exec(open(os.path.join(ROOT, "InitGui.py")).read(), {"__name__": "InitGui"})
-    exec(open(os.path.join(ROOT, "Init.py")).read(), {"__name__": "Init"})
     import example_part
 
     # Open the example part.

@@ -8,23 +8,7 @@ import parts
 from conftest import build_op
 from freecad_plugin import PlungeRough
 from gcode import parse_gcode, replay
-from freecad_plugin.compat import post_module
-
-PathPost = pytest.importorskip("PathScripts.PathPost")
-
-
-def post_job(job, name, args, tmp_path):
-    """The job's G-code through the named post processor, as the Job's post command does."""
-    gcode = []
-    for objs in PathPost.CommandPathPost().buildPostList(job):
-        if name == "grbl":  # grbl_post always writes its file (0.20) and returns None
-            out = str(tmp_path / "grbl.nc")
-            post_module(name).export(objs, out, args)
-            with open(out) as f:
-                gcode.append(f.read())
-        else:
-            gcode.append(post_module(name).export(objs, "-", args))
-    return "\n".join(gcode)
+from parts import post_job
 
 
 def plan_plunges(op):

@@ -1,0 +1,58 @@
+"""The installed addon (cmake --install ... --component freecad_addon, as
+resources/install_addon.sh does) loads in a fresh FreeCAD profile: FreeCAD runs
+its Init.py, the op registers with the setup sheets, and the planner module next
+to it plans, all from the Mod folder and not from the source or build tree."""
+import json
+import os
+import subprocess
+import sys
+
+from conftest import BUILD, ROOT
+
+CHECK = r"""
+import json, sys, FreeCAD
+import freecad_plugin, plunge
+from freecad_plugin.compat import PathSetupSheet
+from freecad_plugin import PlungeRough
+plan = PlungeRough.planner().plan({"version": 1, "boundary": [[0, 0], [60, 0], [60, 40], [0, 40]],
+    "tools": [{"id": 1, "diameter": 16}, {"id": 2, "diameter": 6}], "top_z": 0, "safe_z": 5,
+    "floor": {"z": -10}})
+print("RESULT=" + json.dumps({"plugin": freecad_plugin.__file__, "plunge": plunge.__file__,
+    "registered": "PlungeRough" in PathSetupSheet._RegisteredOps, "plunges": len(plan["plunges"]),
+    "coverage": plan["stats"]["coverage"]}))
+"""
+
+
+def test_installed_addon_loads_and_plans(tmp_path):
+    mod = tmp_path / "data" / "FreeCAD" / "Mod"
+    subprocess.run(["cmake", "--install", BUILD, "--component", "freecad_addon", "--prefix", str(mod)],
+                   check=True, capture_output=True)
+    installed = mod / "PlungeRough"
+    for name in ("Init.py", "InitGui.py", "package.xml", "freecad_plugin/PlungeRough.py",
+                 "resources/icons/PlungeRough.svg", "resources/panels/PlungeRoughEdit.ui"):
+        assert (installed / name).is_file(), name
+    env = dict(os.environ, XDG_DATA_HOME=str(tmp_path / "data"), XDG_CONFIG_HOME=str(tmp_path / "config"))
+    env.pop("PYTHONPATH", None)
+    run = subprocess.run(["freecadcmd", "-c", CHECK], cwd=str(tmp_path), env=env, capture_output=True, text=True,
+                         timeout=300)
+    lines = [l for l in run.stdout.replace("\r", "\n").splitlines() if l.startswith("RESULT=")]
+    assert lines, run.stdout[-2000:] + run.stderr[-2000:]
+    result = json.loads(lines[0][len("RESULT="):])
+    assert result["plugin"].startswith(str(installed))
+    assert result["plunge"].startswith(str(installed))
+    assert result["registered"]
+    assert result["plunges"] > 0 and result["coverage"] > 0.99
+
+
+def test_package_metadata():
+    """package.xml is what the Addon Manager reads: it must parse, carry the
+    project's version and point at files that exist."""
+    import FreeCAD
+    meta = FreeCAD.Metadata(os.path.join(ROOT, "package.xml"))
+    assert meta.Name == "PlungeRough"
+    with open(os.path.join(ROOT, "CMakeLists.txt")) as f:
+        assert "VERSION %s " % meta.Version in f.read()
+    assert os.path.isfile(os.path.join(ROOT, meta.Icon))
+    workbenches = meta.Content["workbench"]
+    assert [w.Subdirectory for w in workbenches] == ["./"]
+    assert os.path.isfile(os.path.join(ROOT, workbenches[0].Subdirectory, "InitGui.py"))
