@@ -85,6 +85,8 @@ def add_tool_controller(job, diameter, number, template="5mm_Endmill.fctb"):
     tc = PathToolController.Create("TC: %g mm plunger" % diameter, tool=bit, toolNumber=number)
     tc.VertFeed = "150 mm/min"
     tc.HorizFeed = "600 mm/min"
+    tc.SpindleSpeed = round(40000.0 / diameter)  # about 125 m/min cutting speed
+    tc.SpindleDir = "Forward"
     job.Proxy.addToolController(tc)
     return tc
 
