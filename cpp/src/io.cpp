@@ -40,33 +40,13 @@ void onlyKeys(const json& j, const std::set<std::string>& allowed, const std::st
 
 }  // namespace
 
-PlanInput planInputFromJson(const std::string& text) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {  // syntax errors, numbers out of range
-    std::string msg = e.what();
-    throw Error("invalid JSON: " + msg.substr(msg.find(']') == std::string::npos ? 0 : msg.find(']') + 2));
-  }
-  if (!j.is_object()) throw Error("input: expected a JSON object");
-  onlyKeys(j,
-           {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",
-            "min_coverage", "contact_ratio", "packing_order", "sequencing", "start"},
-           "input: ");
-  PlanInput in;
-  if (j.contains("version") && !(j["version"].is_number_integer() && j["version"].get<long long>() == 1))
-    throw Error("version: only version 1 is supported");
-  if (!j.contains("boundary")) throw Error("boundary: required");
-  in.boundary = loop(j["boundary"], "boundary");
-  if (j.contains("islands")) {
-    const json& is = j["islands"];
-    if (!is.is_array()) throw Error("islands: expected a list of polylines");
-    for (size_t i = 0; i < is.size(); ++i) in.islands.push_back(loop(is[i], "islands[" + std::to_string(i) + "]"));
-  }
-  if (!j.contains("tools") || !j["tools"].is_array()) throw Error("tools: expected a list of {\"diameter\": ...}");
-  const json& ts = j["tools"];
+namespace {
+
+std::vector<Tool> toolList(const json& ts, const std::string& what) {
+  if (!ts.is_array()) throw Error(what + ": expected a list of {\"diameter\": ...}");
+  std::vector<Tool> tools;
   for (size_t i = 0; i < ts.size(); ++i) {
-    const std::string name = "tools[" + std::to_string(i) + "]";
+    const std::string name = what + "[" + std::to_string(i) + "]";
     if (!ts[i].is_object()) throw Error(name + ": expected an object with a diameter");
     onlyKeys(ts[i], {"diameter", "id", "feed", "shape", "corner_radius"}, name + ": ");
     if (!ts[i].contains("diameter")) throw Error(name + ".diameter: required");
@@ -89,13 +69,59 @@ PlanInput planInputFromJson(const std::string& text) {
       else throw Error(name + ".shape: expected \"flat\", \"ball\" or \"bull\"");
     }
     if (ts[i].contains("corner_radius")) t.cornerRadius = number(ts[i]["corner_radius"], name + ".corner_radius");
-    in.tools.push_back(t);
+    tools.push_back(t);
   }
   // Default tool numbers: 1, 2, ... by decreasing diameter.
-  for (Tool& t : in.tools)
+  for (Tool& t : tools)
     if (t.id < 0)
-      t.id = 1 + static_cast<int>(std::count_if(in.tools.begin(), in.tools.end(),
+      t.id = 1 + static_cast<int>(std::count_if(tools.begin(), tools.end(),
                                                 [&](const Tool& o) { return o.diameter > t.diameter; }));
+  return tools;
+}
+
+const json& object(const json& j, const char* key, const std::set<std::string>& keys) {
+  const json& o = j[key];
+  if (!o.is_object()) throw Error(std::string(key) + ": expected an object");
+  onlyKeys(o, keys, std::string(key) + ": ");
+  return o;
+}
+
+}  // namespace
+
+PlanInput planInputFromJson(const std::string& text) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::exception& e) {  // syntax errors, numbers out of range
+    std::string msg = e.what();
+    throw Error("invalid JSON: " + msg.substr(msg.find(']') == std::string::npos ? 0 : msg.find(']') + 2));
+  }
+  if (!j.is_object()) throw Error("input: expected a JSON object");
+  onlyKeys(j,
+           {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",
+            "min_coverage", "contact_ratio", "packing_order", "sequencing", "start", "tool_library", "selection",
+            "time_model", "grid"},
+           "input: ");
+  PlanInput in;
+  if (j.contains("version") && !(j["version"].is_number_integer() && j["version"].get<long long>() == 1))
+    throw Error("version: only version 1 is supported");
+  if (!j.contains("boundary")) throw Error("boundary: required");
+  in.boundary = loop(j["boundary"], "boundary");
+  if (j.contains("islands")) {
+    const json& is = j["islands"];
+    if (!is.is_array()) throw Error("islands: expected a list of polylines");
+    for (size_t i = 0; i < is.size(); ++i) in.islands.push_back(loop(is[i], "islands[" + std::to_string(i) + "]"));
+  }
+  if (j.contains("tools") && j["tools"].is_string() && j["tools"].get<std::string>() == "auto") {
+    in.autoTools = true;
+    if (!j.contains("tool_library")) throw Error("tool_library: required with \"tools\": \"auto\"");
+    in.library = toolList(j["tool_library"], "tool_library");
+  } else {
+    if (!j.contains("tools") || !j["tools"].is_array())
+      throw Error("tools: expected a list of {\"diameter\": ...} or \"auto\" with a tool_library");
+    if (j.contains("tool_library")) throw Error("tool_library: only with \"tools\": \"auto\"");
+    in.tools = toolList(j["tools"], "tools");
+  }
   if (j.contains("top_z")) in.topZ = number(j["top_z"], "top_z");
   if (j.contains("safe_z")) in.safeZ = number(j["safe_z"], "safe_z");
   if (!j.contains("floor") || !j["floor"].is_object()) throw Error("floor: required, e.g. {\"z\": -10}");
@@ -141,6 +167,27 @@ PlanInput planInputFromJson(const std::string& text) {
     in.sequencing = j["sequencing"].get<std::string>();
   }
   if (j.contains("start")) in.start = point(j["start"], "start");
+  if (j.contains("selection")) {
+    const json& o = object(j, "selection", {"weight_time", "weight_tools", "rise_factor"});
+    if (o.contains("weight_time")) in.selection.weightTime = number(o["weight_time"], "selection.weight_time");
+    if (o.contains("weight_tools")) in.selection.weightTools = number(o["weight_tools"], "selection.weight_tools");
+    if (o.contains("rise_factor")) in.selection.riseFactor = number(o["rise_factor"], "selection.rise_factor");
+  }
+  if (j.contains("time_model")) {
+    const json& o = object(j, "time_model", {"rapid_rate", "retract_rate", "tool_change_seconds"});
+    if (o.contains("rapid_rate")) in.timeModel.rapidRate = number(o["rapid_rate"], "time_model.rapid_rate");
+    if (o.contains("retract_rate")) in.timeModel.retractRate = number(o["retract_rate"], "time_model.retract_rate");
+    if (o.contains("tool_change_seconds"))
+      in.timeModel.toolChangeSeconds = number(o["tool_change_seconds"], "time_model.tool_change_seconds");
+  }
+  if (j.contains("grid")) {
+    const json& o = object(j, "grid", {"pattern", "step"});
+    if (o.contains("pattern")) {
+      if (!o["pattern"].is_string()) throw Error("grid.pattern: expected \"square\" or \"honeycomb\"");
+      in.gridPattern = o["pattern"].get<std::string>();
+    }
+    if (o.contains("step")) in.gridStep = number(o["step"], "grid.step");
+  }
   return in;
 }
 
@@ -160,7 +207,37 @@ std::string planToJson(const Plan& plan) {
                   {"coverage", s.coverage},
                   {"travel_length", s.travelLength},
                   {"planning_seconds", s.planningSeconds},
-                  {"hex_reference_count", s.hexReferenceCount}};
+                  {"hex_reference_count", s.hexReferenceCount},
+                  {"estimated_minutes", s.estimatedMinutes}};
+  if (plan.selection) {
+    const ToolSelection& sel = *plan.selection;
+    json necks = json::array(), parts = json::array(), sets = json::array();
+    for (const Neck& n : sel.necks)
+      necks.push_back({{"x", n.center.x}, {"y", n.center.y}, {"width", n.width}, {"island", n.island},
+                       {"line", {{n.a.x, n.a.y}, {n.b.x, n.b.y}}}});
+    for (const SubRegion& p : sel.parts)
+      parts.push_back({{"area", p.area}, {"inscribed_diameter", 2 * p.inscribed.r},
+                       {"inscribed_center", {p.inscribed.c.x, p.inscribed.c.y}}, {"necks", p.necks}});
+    for (const ToolSetResult& r : sel.sets) {
+      json o = {{"diameters", r.diameters}, {"evaluated", r.evaluated}, {"estimated_minutes", r.minutes},
+                {"weighted", r.weighted}};
+      if (r.evaluated) {
+        o["plunges"] = r.plunges;
+        o["coverage"] = r.coverage;
+      } else {
+        o["pruned"] = r.subtree ? "with every set adding smaller candidates" : "lower bound";
+      }
+      sets.push_back(o);
+    }
+    out["tool_selection"] = {{"largest_inscribed_diameter", 2 * sel.inscribed.r},
+                             {"necks", necks},
+                             {"subregions", parts},
+                             {"subregion_order", sel.order},
+                             {"candidates", sel.candidates},
+                             {"sets", sets},
+                             {"chosen", sel.chosen},
+                             {"reasoning", sel.reasoning}};
+  }
   return out.dump(1) + "\n";
 }
 
@@ -278,7 +355,7 @@ std::string planToGcode(const PlanInput& input, const Plan& plan) {
     << std::setprecision(4);
   s << "G21 G90 G17\n";
   std::map<int, double> feed;
-  for (const Tool& t : input.tools) feed[t.id] = t.feed;
+  for (const Tool& t : input.autoTools ? input.library : input.tools) feed[t.id] = t.feed;
   int current = -1;
   for (const Plunge& p : plan.plunges) {
     if (p.toolId != current) {

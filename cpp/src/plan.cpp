@@ -11,6 +11,7 @@
 #include "plunge/depth.hpp"
 #include "plunge/error.hpp"
 #include "plunge/floor.hpp"
+#include "plunge/grid.hpp"
 #include "plunge/packing.hpp"
 #include "plunge/polygon.hpp"
 #include "plunge/sequencing.hpp"
@@ -26,12 +27,13 @@ void requireFinite(double v, const std::string& what) {
 }  // namespace
 
 void validate(PlanInput& in) {
-  if (in.tools.empty()) throw Error("tools: at least one tool is required");
+  if (in.tools.empty()) throw Error(in.autoTools ? "tool_library: at least one tool is required"
+                                                 : "tools: at least one tool is required");
   std::set<int> ids;
   std::set<double> diameters;
   for (size_t i = 0; i < in.tools.size(); ++i) {
     const Tool& t = in.tools[i];
-    const std::string name = "tools[" + std::to_string(i) + "]";
+    const std::string name = (in.autoTools ? "tool_library[" : "tools[") + std::to_string(i) + "]";
     requireFinite(t.diameter, name + ".diameter");
     if (t.diameter <= 0.0) throw Error(name + ".diameter must be > 0");
     requireFinite(t.feed, name + ".feed");
@@ -66,7 +68,20 @@ void validate(PlanInput& in) {
   } else if (in.floor.kind == Floor::Kind::Brep && in.floor.brep.empty()) {
     throw Error("floor.brep: no file name");
   }
-  if (in.strategy != "packing") throw Error("strategy: unknown strategy '" + in.strategy + "' (use \"packing\")");
+  if (in.strategy != "packing" && in.strategy != "grid")
+    throw Error("strategy: unknown strategy '" + in.strategy + "' (use \"packing\" or \"grid\")");
+  gridPatternFromName(in.gridPattern);
+  requireFinite(in.gridStep, "grid.step");
+  if (!(in.gridStep >= 0.0 && in.gridStep <= 1.0)) throw Error("grid.step must be in (0, 1] (a fraction of the diameter)");
+  for (double v : {in.timeModel.rapidRate, in.timeModel.retractRate})
+    if (!std::isfinite(v) || v <= 0.0) throw Error("time_model: rapid_rate and retract_rate must be > 0");
+  if (!std::isfinite(in.timeModel.toolChangeSeconds) || in.timeModel.toolChangeSeconds < 0.0)
+    throw Error("time_model.tool_change_seconds must be >= 0");
+  const SelectionOptions& so = in.selection;
+  if (!std::isfinite(so.weightTime) || !std::isfinite(so.weightTools) || so.weightTime < 0 || so.weightTools < 0 ||
+      so.weightTime + so.weightTools <= 0)
+    throw Error("selection: weight_time and weight_tools must be >= 0, not both 0");
+  if (!std::isfinite(so.riseFactor) || so.riseFactor <= 1.0) throw Error("selection.rise_factor must be > 1");
   if (in.packingOrder != "auto" && in.packingOrder != "hole_degree" && in.packingOrder != "lattice")
     throw Error("packing_order: unknown order '" + in.packingOrder + "' (use \"auto\", \"hole_degree\" or \"lattice\")");
   requireFinite(in.minCoverage, "min_coverage");
@@ -81,6 +96,7 @@ void validate(PlanInput& in) {
 }
 
 Plan plan(PlanInput in) {
+  if (in.autoTools) return planWithToolSelection(in);
   const auto t0 = std::chrono::steady_clock::now();
   validate(in);
   const Region region(in.boundary, in.islands);
@@ -120,7 +136,13 @@ Plan plan(PlanInput in) {
     return coverRegion(region, radii, packMaxHoleDegree(region, radii, po), co);
   };
   CoverResult cover;
-  if (in.packingOrder == "hole_degree") {
+  if (in.strategy == "grid") {
+    GridOptions go;
+    go.pattern = gridPatternFromName(in.gridPattern);
+    go.step = in.gridStep;
+    go.allowance = in.radialAllowance;
+    cover = gridPlacements(region, radii, go);
+  } else if (in.packingOrder == "hole_degree") {
     cover = packAndCover(PackingOrder::HoleDegree);
   } else if (in.packingOrder == "lattice") {
     cover = packAndCover(PackingOrder::Lattice);
@@ -169,6 +191,7 @@ Plan plan(PlanInput in) {
   out.stats.coveredArea = cover.coveredArea;
   out.stats.coverage = cover.accessibleArea > 0 ? cover.coveredArea / cover.accessibleArea : 0.0;
   out.stats.hexReferenceCount = cover.accessibleArea / (1.5 * std::sqrt(3.0) * radii.front() * radii.front());
+  out.stats.estimatedMinutes = estimateMinutes(out, in.tools, in.safeZ, in.timeModel);
   out.stats.planningSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

@@ -9,6 +9,7 @@
 #include "plunge/depth.hpp"
 #include "plunge/geometry.hpp"
 #include "plunge/region.hpp"
+#include "plunge/selection.hpp"
 
 namespace plunge {
 
@@ -46,6 +47,14 @@ struct PlanInput {
   std::optional<Vec2> start;   // "start": where the machine starts (default: first boundary point)
   std::string sequencing = "local_search";  // "sequencing": or "annealing" (the thesis)
   std::string baseDir;  // where a relative floor.brep path starts (the CLI: the input file's folder)
+  // "tools": "auto": the plungers are chosen from `library` ("tool_library").
+  bool autoTools = false;
+  std::vector<Tool> library;
+  SelectionOptions selection;  // "selection": {"weight_time", "weight_tools", "rise_factor"}
+  TimeModel timeModel;         // "time_model": {"rapid_rate", "retract_rate", "tool_change_seconds"}
+  // "strategy": "grid" with "grid": {"pattern": "honeycomb" | "square", "step": fraction of the diameter}.
+  std::string gridPattern = "honeycomb";
+  double gridStep = 0.0;
 };
 
 struct Plunge {
@@ -73,6 +82,7 @@ struct PlanStats {
   // Reference: plunges of the largest tool a hexagonal covering of the
   // accessible area would need (area / (2.598 r^2)), see shared notes.
   double hexReferenceCount = 0.0;
+  double estimatedMinutes = 0.0;  // the time model's estimate (selection.hpp)
 };
 
 struct Plan {
@@ -81,6 +91,7 @@ struct Plan {
   // For drawing: the accessible region and what the plunges leave uncovered.
   Polygons accessible;
   Polygons uncovered;
+  std::optional<ToolSelection> selection;  // with "tools": "auto"
 };
 
 // Checks every number and option of the input; throws plunge::Error naming the problem.

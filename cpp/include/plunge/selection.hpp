@@ -1,0 +1,68 @@
+// Choosing the plungers (polygon-subdivision thesis, chapter 5) and the time
+// model that judges a tool set.
+//
+// 5.1 candidate tools: per sub-region (cut at the necks) the largest tool,
+//     0.7 x its largest inscribed circle, and the neck tools, each snapped down to
+//     a size in the library; the library's smallest tool is in every set, since it
+//     decides how much of the corners the plan must reach.
+// 5.3 time: the thesis estimates milling time from areas. Here every tool set the
+//     search reaches is actually planned (packing, covering, tour, depths) and its
+//     time taken from that plan, so the comparison is between real plans.
+// 5.4 branch and bound over subsets of the candidates, largest first, with a lower
+//     bound from the plunges no set can do without (accessible area over the
+//     largest disk still possible); weighted time + number of tools, as the thesis.
+// 5.5 sub-regions ordered by a minimum spanning tree (reported; the plunges of
+//     each tool are then toured over the whole pocket, which is never longer).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "plunge/medial.hpp"
+
+namespace plunge {
+
+struct PlanInput;
+struct Plan;
+struct Tool;
+
+struct TimeModel {
+  double rapidRate = 10000.0;       // mm/min, XY moves between plunges
+  double retractRate = 5000.0;      // mm/min, back up to the safe height
+  double toolChangeSeconds = 20.0;  // per tool used
+};
+
+// Plunges (down at each tool's feed from the safe height, up at the retract
+// rate) + rapid travel + tool changes, in minutes.
+double estimateMinutes(const Plan& plan, const std::vector<Tool>& tools, double safeZ, const TimeModel& model);
+
+struct SelectionOptions {
+  double weightTime = 1.0;   // weights of the thesis's weighted time (minutes)
+  double weightTools = 0.0;  // ... and of the number of tools
+  double riseFactor = 1.5;   // neck: clearance rises this much on both sides
+};
+
+struct ToolSetResult {
+  std::vector<double> diameters;
+  bool evaluated = false;  // planned; otherwise pruned by its bound
+  bool subtree = false;    // pruned with every set that adds smaller candidates to it
+  int plunges = 0;
+  double coverage = 0.0;
+  double minutes = 0.0;     // planned time, or the lower bound when pruned
+  double weighted = 0.0;
+};
+
+struct ToolSelection {
+  Circle inscribed;
+  std::vector<Neck> necks;
+  std::vector<SubRegion> parts;
+  std::vector<int> order;  // sub-region visiting order (MST)
+  std::vector<double> candidates;
+  std::vector<ToolSetResult> sets;
+  std::vector<double> chosen;
+  std::vector<std::string> reasoning;
+};
+
+// Plans with the tool set chosen from input.library; the plan carries the selection.
+Plan planWithToolSelection(const PlanInput& input);
+
+}  // namespace plunge
