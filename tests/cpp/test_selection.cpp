@@ -1,0 +1,107 @@
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "plunge/error.hpp"
+#include "plunge/io.hpp"
+#include "plunge/plan.hpp"
+#include "testutil.hpp"
+
+using namespace plunge;
+
+namespace {
+
+PlanInput neckInput() {
+  PlanInput in = planInputFromJson(test::readData("shapes/neck.json"));
+  in.autoTools = true;
+  in.library.clear();
+  int id = 1;
+  for (double d : {32.0, 25.0, 20.0, 12.0, 8.0, 6.0}) in.library.push_back({d, id++, 100.0 + 10 * d});
+  in.tools.clear();
+  return in;
+}
+
+}  // namespace
+
+TEST(Selection, TimeModelAddsUpThePlan) {
+  PlanInput in = planInputFromJson(test::readData("shapes/convex.json"));
+  in.timeModel = {8000.0, 4000.0, 30.0};
+  const Plan p = plan(in);
+  std::map<int, double> feed;
+  for (const Tool& t : in.tools) feed[t.id] = t.feed;
+  double minutes = 0.0, travel = 0.0;
+  for (size_t i = 0; i < p.plunges.size(); ++i) {
+    const double depth = in.safeZ - p.plunges[i].z;
+    minutes += depth / feed[p.plunges[i].toolId] + depth / 4000.0;
+    if (i) travel += std::hypot(p.plunges[i].x - p.plunges[i - 1].x, p.plunges[i].y - p.plunges[i - 1].y);
+  }
+  minutes += travel / 8000.0 + p.stats.perTool.size() * 0.5;
+  EXPECT_NEAR(p.stats.estimatedMinutes, minutes, 1e-9 * minutes);
+}
+
+TEST(Selection, BranchAndBoundFindsTheEnumeratedOptimum) {
+  const PlanInput in = neckInput();
+  const Plan chosen = plan(in);
+  ASSERT_TRUE(chosen.selection);
+  const ToolSelection& sel = *chosen.selection;
+  // The neck of the dumbbell-like shape is found and gives a neck tool.
+  ASSERT_FALSE(sel.necks.empty());
+  EXPECT_GE(sel.parts.size(), 2u);
+  EXPECT_EQ(sel.candidates.back(), 6.0);  // the library's smallest is always a candidate
+  ASSERT_FALSE(sel.chosen.empty());
+  EXPECT_EQ(sel.chosen.back(), 6.0);
+  // Plan every subset of the candidates (smallest always in) and compare.
+  const std::vector<double> others(sel.candidates.begin(), sel.candidates.end() - 1);
+  double best = 1e300;
+  for (unsigned mask = 0; mask < (1u << others.size()); ++mask) {
+    PlanInput sub = in;
+    sub.autoTools = false;
+    for (size_t i = 0; i < others.size(); ++i)
+      if (mask & (1u << i))
+        for (const Tool& t : in.library)
+          if (t.diameter == others[i]) sub.tools.push_back(t);
+    for (const Tool& t : in.library)
+      if (t.diameter == 6.0) sub.tools.push_back(t);
+    best = std::min(best, plan(sub).stats.estimatedMinutes);
+  }
+  EXPECT_NEAR(chosen.stats.estimatedMinutes, best, 1e-9 * best);
+  // Pruned sets were pruned by a bound above the optimum.
+  for (const ToolSetResult& r : sel.sets)
+    if (!r.evaluated) EXPECT_GE(r.minutes, best);
+  // The plan uses exactly the chosen tools.
+  std::vector<double> used;
+  for (const ToolCount& t : chosen.stats.perTool) used.push_back(t.diameter);
+  EXPECT_EQ(used, sel.chosen);
+}
+
+TEST(Selection, WeightOnToolCountPrefersFewerTools) {
+  PlanInput in = neckInput();
+  in.selection.weightTime = 0.0;
+  in.selection.weightTools = 1.0;
+  const Plan p = plan(in);
+  EXPECT_EQ(p.selection->chosen.size(), 1u);  // the smallest alone reaches everything
+}
+
+TEST(Selection, Deterministic) {
+  const PlanInput in = neckInput();
+  const Plan a = plan(in), b = plan(in);
+  ASSERT_EQ(a.plunges.size(), b.plunges.size());
+  for (size_t i = 0; i < a.plunges.size(); ++i) {
+    EXPECT_EQ(a.plunges[i].x, b.plunges[i].x);
+    EXPECT_EQ(a.plunges[i].y, b.plunges[i].y);
+  }
+}
+
+TEST(Selection, BadLibrary) {
+  PlanInput in = neckInput();
+  in.library.clear();
+  EXPECT_THROW(plan(in), Error);
+  in = neckInput();
+  in.library[1].diameter = -3;
+  try {
+    plan(in);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("tool_library[1]"), std::string::npos) << e.what();
+  }
+}

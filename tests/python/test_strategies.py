@@ -1,0 +1,103 @@
+"""Automatic plunger selection and the grid baseline, through the CLI and the module."""
+import json
+import os
+import subprocess
+
+import pytest
+
+from conftest import SHAPES
+from geometry_check import assert_no_gouge, coverage
+
+SHAPE_NAMES = ["convex", "concave", "islands", "freeform", "neck"]
+LIBRARY = [{"diameter": d, "id": i + 1, "feed": f}
+           for i, (d, f) in enumerate([(32, 120), (25, 150), (20, 150), (16, 180), (12, 200), (8, 250), (6, 300)])]
+
+
+def load(name):
+    with open(os.path.join(SHAPES, name + ".json")) as f:
+        return json.load(f)
+
+
+def auto(data):
+    data = dict(data)
+    del data["tools"]
+    data["tools"] = "auto"
+    data["tool_library"] = LIBRARY
+    return data
+
+
+@pytest.mark.parametrize("name", ["neck", "islands"])
+def test_auto_selection_cli_prints_its_reasoning(cli, tmp_path, name):
+    data = auto(load(name))
+    src, out = tmp_path / "in.json", tmp_path / "plan.json"
+    src.write_text(json.dumps(data))
+    res = subprocess.run([cli, "plan", str(src), "-o", str(out), "--gcode", str(tmp_path / "p.nc")],
+                         capture_output=True, text=True, timeout=600)
+    assert res.returncode == 0, res.stderr
+    assert "largest inscribed circle" in res.stdout and "chosen:" in res.stdout
+    plan = json.loads(out.read_text())
+    sel = plan["tool_selection"]
+    chosen = sel["chosen"]
+    assert chosen[-1] == 6  # the library's smallest is in every set
+    assert [t["diameter"] for t in plan["stats"]["per_tool"]] == chosen
+    ids = {t["diameter"]: t["id"] for t in LIBRARY}
+    assert all(p["tool_id"] == ids[p["diameter"]] for p in plan["plunges"])
+    assert_no_gouge(data, plan)
+    evaluated = [s for s in sel["sets"] if s["evaluated"]]
+    assert evaluated and min(s["weighted"] for s in evaluated) == pytest.approx(
+        plan["stats"]["estimated_minutes"])
+    for s in sel["sets"]:
+        if not s["evaluated"]:
+            assert s["weighted"] >= plan["stats"]["estimated_minutes"]  # pruned by a valid bound
+    # Every candidate is a library size; the G-code plunges at the library feeds.
+    assert set(sel["candidates"]) <= {t["diameter"] for t in LIBRARY}
+    feeds = {t["feed"] for t in LIBRARY if t["diameter"] in chosen}
+    gcode = (tmp_path / "p.nc").read_text()
+    assert all(("F%g" % f in gcode or "F%.1f" % f in gcode or "F%.3f" % f in gcode) for f in feeds)
+
+
+def test_neck_shape_gets_a_neck_tool(plunge):
+    plan = plunge.plan(auto(load("neck")))
+    sel = plan["tool_selection"]
+    assert sel["necks"], "the neck shape's neck is found"
+    width = min(n["width"] for n in sel["necks"])
+    radial = load("neck")["allowance"]["radial"]
+    neck_tool = max(t["diameter"] for t in LIBRARY if t["diameter"] <= width - 2 * radial)
+    assert neck_tool in sel["candidates"]
+    assert len(sel["subregions"]) >= 2
+    assert sorted(sel["subregion_order"]) == list(range(len(sel["subregions"])))
+
+
+def test_auto_bad_input(plunge):
+    data = auto(load("convex"))
+    with pytest.raises(ValueError, match="tool_library"):
+        plunge.plan(dict(data, tool_library=[]))
+    with pytest.raises(ValueError, match="tool_library"):
+        plunge.plan(dict(data, tools=[{"diameter": 10}]))  # a library only with "auto"
+    with pytest.raises(ValueError, match="weight"):
+        plunge.plan(dict(data, selection={"weight_time": 0, "weight_tools": 0}))
+    with pytest.raises(ValueError, match="time_model"):
+        plunge.plan(dict(data, time_model={"rapid_rate": -1}))
+
+
+@pytest.mark.parametrize("name", SHAPE_NAMES)
+@pytest.mark.parametrize("pattern", ["square", "honeycomb"])
+def test_grid_plans_every_shape(plunge, name, pattern):
+    data = dict(load(name), strategy="grid", grid={"pattern": pattern})
+    plan = plunge.plan(data)
+    assert plan["stats"]["plunge_count"] == len(plan["plunges"]) > 0
+    assert_no_gouge(data, plan)
+    measured = coverage(data, plan)
+    assert measured == pytest.approx(plan["stats"]["coverage"], abs=2e-3)
+    packed = plunge.plan(load(name))
+    assert packed["stats"]["coverage"] > measured  # the baseline leaves more near the walls
+
+
+def test_grid_bad_input(plunge):
+    data = load("convex")
+    with pytest.raises(ValueError, match="grid.pattern"):
+        plunge.plan(dict(data, strategy="grid", grid={"pattern": "hex"}))
+    with pytest.raises(ValueError, match="grid.step"):
+        plunge.plan(dict(data, strategy="grid", grid={"step": 1.2}))
+    with pytest.raises(ValueError, match="strategy"):
+        plunge.plan(dict(data, strategy="spiral"))
