@@ -27,7 +27,7 @@ translate = FreeCAD.Qt.translate
 
 # Properties the job's setup sheet can carry defaults for.
 SETUP_PROPERTIES = ["RadialAllowance", "FloorAllowance", "ChordTolerance", "UseCannedCycle", "PeckDepth",
-                    "MinCoverage"]
+                    "MinCoverage", "AutoSelectTools"]
 
 
 def SetupProperties():
@@ -80,6 +80,9 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         _add(obj, "App::PropertyLength", "PeckDepth", "Peck depth of the canned cycle, 0 = no pecking", 0.0)
         _add(obj, "App::PropertyFloat", "MinCoverage",
              "Percentage of the reachable floor the plunges must clear", 99.6)
+        _add(obj, "App::PropertyBool", "AutoSelectTools",
+             "Let the planner choose which of the plungers to use (shortest estimated time); the others stay idle",
+             False)
         _add(obj, "App::PropertyString", "Summary", "The last plan: plunges per tool, coverage, travel, time",
              "", mode=1)
         _add(obj, "App::PropertyString", "PlanData", "The last plan and its input (JSON), read by the companions",
@@ -96,6 +99,10 @@ class ObjectPlungeRough(PathOp.ObjectOp):
     def opOnChanged(self, obj, prop):
         if prop == "ToolControllers" and "Restore" not in obj.State and hasattr(obj, "PlanData"):
             syncCompanions(obj)
+        if prop == "AutoSelectTools" and "Restore" not in obj.State and not obj.AutoSelectTools:
+            for comp in companions(obj):  # every plunger works again
+                if not comp.Active:
+                    comp.Active = True
 
     def opExecute(self, obj):
         obj.PlanData = ""
@@ -129,6 +136,8 @@ class ObjectPlungeRough(PathOp.ObjectOp):
                 "boundary": boundary,
                 "islands": islands,
                 "tools": [geometry.tool_spec(tc) for tc in tcs],
+                # Rapids and retracts at the first plunger's rapid rates, as the post runs them.
+                "time_model": time_model(tcs[0]),
                 "top_z": obj.StartDepth.Value,
                 "safe_z": obj.SafeHeight.Value,
                 "floor": floor,
@@ -142,6 +151,9 @@ class ObjectPlungeRough(PathOp.ObjectOp):
                 raise ValueError("the safe height is above the clearance height")
             if obj.StartDepth.Value <= obj.FinalDepth.Value:
                 raise ValueError("the start depth must be above the final depth")
+            if obj.AutoSelectTools:
+                data["tool_library"] = data.pop("tools")
+                data["tools"] = "auto"
             plan = planner().plan(data, svg=True)
         except ValueError as e:
             _report(obj, str(e))
@@ -153,7 +165,13 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         obj.PlanData = json.dumps({"input": data, "plan": plan})
         with open(os.path.join(workdir, "plan.svg"), "w") as f:
             f.write(picture)
-        obj.Summary = summary(plan, tcs, obj.SafeHeight.Value)
+        obj.Summary = summary(plan)
+        # Automatic choice: plungers the plan does not use stay idle (no tool change).
+        used = {p["tool_id"] for p in plan["plunges"]}
+        for comp in companions(obj):
+            active = not obj.AutoSelectTools or int(comp.ToolController.ToolNumber) in used
+            if comp.Active != active:
+                comp.Active = active
         own = [(p["x"], p["y"], p["z"]) for p in plan["plunges"] if p["tool_id"] == int(obj.ToolController.ToolNumber)]
         self.commandlist.extend(toolCommands(obj, own))
         PathFeedRate.setFeedRate(self.commandlist, obj.ToolController)
@@ -174,25 +192,27 @@ def toolCommands(op, plunges):
                               op.PeckDepth.Value)
 
 
-def summary(plan, tcs, safe_z):
-    """Plunges per tool, coverage, travel and an estimated time."""
-    s = plan["stats"]
-    by_number = {int(tc.ToolNumber): tc for tc in tcs}
-    minutes = 0.0
-    def per_minute(speed, default):
-        value = speed.getValueAs("mm/min").Value if speed is not None else 0.0
-        return value if value > 0 else default
+def time_model(tc):
+    """The planner's time model from a tool controller's rapid rates (defaults when unset)."""
+    model = {}
+    for key, prop in (("rapid_rate", "HorizRapid"), ("retract_rate", "VertRapid")):
+        value = getattr(tc, prop).getValueAs("mm/min").Value if hasattr(tc, prop) else 0.0
+        if value > 0:
+            model[key] = value
+    return model
 
-    for p in plan["plunges"]:
-        tc = by_number.get(p["tool_id"])
-        depth = safe_z - p["z"]
-        feed = per_minute(tc.VertFeed if tc else None, 100.0)
-        rapid = per_minute(tc.VertRapid if tc else None, 3000.0)
-        minutes += depth / feed + depth / rapid
-    minutes += s["travel_length"] / 3000.0 + 0.25 * len(s["per_tool"])  # rapids, tool changes
+
+def summary(plan):
+    """Plunges per tool, coverage, travel and the planner's time estimate."""
+    s = plan["stats"]
     parts = ["T%d %g mm: %d" % (t["tool_id"], t["diameter"], t["count"]) for t in s["per_tool"]]
-    return "%d plunges (%s), coverage %.2f %%, travel %.0f mm, about %.0f min" % (
-        s["plunge_count"], ", ".join(parts), 100 * s["coverage"], s["travel_length"], minutes)
+    text = "%d plunges (%s), coverage %.2f %%, travel %.0f mm, about %.0f min" % (
+        s["plunge_count"], ", ".join(parts), 100 * s["coverage"], s["travel_length"], s["estimated_minutes"])
+    selection = plan.get("tool_selection")
+    if selection:
+        text += "; plungers chosen: %s of %s" % ("/".join("%g" % d for d in selection["chosen"]),
+                                                 "/".join("%g" % d for d in selection["candidates"]))
+    return text
 
 
 class ObjectPlungeRoughTool(PathOp.ObjectOp):

@@ -54,6 +54,8 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             spin.updateProperty()
         if obj.UseCannedCycle != self.form.useCannedCycle.isChecked():
             obj.UseCannedCycle = self.form.useCannedCycle.isChecked()
+        if obj.AutoSelectTools != self.form.autoSelectTools.isChecked():
+            obj.AutoSelectTools = self.form.autoSelectTools.isChecked()
         if abs(obj.MinCoverage - self.form.minCoverage.value()) > 1e-9:
             obj.MinCoverage = self.form.minCoverage.value()
         self.updateCoolant(obj, self.form.coolantController)
@@ -69,6 +71,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
         for spin in self.spins.values():
             spin.updateSpinBox()
         self.form.useCannedCycle.setChecked(obj.UseCannedCycle)
+        self.form.autoSelectTools.setChecked(obj.AutoSelectTools)
         self.form.minCoverage.setValue(obj.MinCoverage)
         self.setupCoolant(obj, self.form.coolantController)
         self.form.toolControllers.blockSignals(True)
@@ -88,6 +91,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             self.form.chordTolerance.editingFinished,
             self.form.peckDepth.editingFinished,
             self.form.useCannedCycle.stateChanged,
+            self.form.autoSelectTools.stateChanged,
             self.form.minCoverage.editingFinished,
             self.form.coolantController.currentIndexChanged,
             self.form.toolControllers.itemChanged,

@@ -135,6 +135,9 @@ def tool_spec(tc):
     bit = tc.Tool
     diameter = float(bit.Diameter.Value if hasattr(bit.Diameter, "Value") else bit.Diameter)
     tool = {"diameter": diameter, "id": int(tc.ToolNumber)}
+    feed = tc.VertFeed.getValueAs("mm/min").Value if hasattr(tc, "VertFeed") else 0.0
+    if feed > 0:
+        tool["feed"] = feed  # plunge feed, for the planner's time estimate
     shape = os.path.basename(str(getattr(bit, "BitShape", ""))).lower()
     if "ball" in shape:
         tool["shape"] = "ball"

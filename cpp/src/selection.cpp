@@ -89,6 +89,16 @@ Plan planWithToolSelection(const PlanInput& input) {
                            i + 1.0, s.area, 2 * s.inscribed.r, 2 * s.inscribed.r);
     line += largest > 0 ? fmt(" -> %g", largest) : std::string(" -> none in the library");
     add(largest);
+    // Beyond the thesis: packing fills the gaps between large disks with mid-size
+    // ones, so the size half-way (in scale) between the largest and the smallest
+    // is a candidate too.
+    if (largest > smallest) {
+      const double mid = snapDown(library, std::sqrt(largest * smallest));
+      if (mid > smallest && mid < largest) {
+        line += fmt("; between %g and %g -> %g", largest, smallest, mid);
+        add(mid);
+      }
+    }
     for (int k : s.necks) {
       const double neck = snapDown(library, sel.necks[k].width - 2 * in.radialAllowance);
       line += fmt("; neck %g tool -> %g", k + 1.0, neck);

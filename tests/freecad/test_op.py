@@ -161,3 +161,33 @@ def test_saved_and_restored(doc, tmp_path):
             ["PlungeRough T3 (12 mm)", "PlungeRough T4 (6 mm)"]
     finally:
         FreeCAD.closeDocument(again.Name)
+
+
+def test_auto_select_tools(doc, tmp_path):
+    """The planner picks from the ticked plungers; the idle ones post no tool change."""
+    job = parts.make_job(doc, parts.islands_part())
+    op, tcs = parts.add_plunge_rough(job, parts.floor_face_name(job.Model.Group[0].Shape, False),
+                                     (20, 16, 12, 8, 6), RadialAllowance=0.5, FloorAllowance=0.3,
+                                     AutoSelectTools=True)
+    plan = PlungeRough.plan_of(op)
+    selection = plan["tool_selection"]
+    chosen = selection["chosen"]
+    assert set(chosen) <= {20, 16, 12, 8, 6} and chosen[-1] == 6
+    assert "chosen" in op.Summary
+    plunges = plunges_of(job)
+    assert len(plunges) == plan["stats"]["plunge_count"]
+    assert {float(tc.Tool.Diameter) for tc, *_ in plunges} == set(chosen)
+    comps = PlungeRough.companions(op)
+    idle = [c for c in comps if not c.Active]
+    assert idle, "the library holds sizes the selection does not take"
+    assert all(float(c.ToolController.Tool.Diameter) not in chosen for c in idle)
+    assert all(float(c.ToolController.Tool.Diameter) in chosen for c in comps if c.Active)
+    assert_no_gouge(job.Model.Group[0].Shape, op.Base[0][1], plunges, op.StartDepth.Value, 0.5, 0.3, every=2)
+    text = parts.post_job(job, "linuxcnc", "--no-header --no-show-editor", tmp_path)
+    changed = {int(w[1:]) for line in text.splitlines() if line.startswith("M6") for w in line.split() if w[0] == "T"}
+    assert all(int(c.ToolController.ToolNumber) not in changed for c in idle)
+    # Off again: every plunger works.
+    op.AutoSelectTools = False
+    doc.recompute()
+    assert all(c.Active for c in comps)
+    assert "tool_selection" not in PlungeRough.plan_of(op)
