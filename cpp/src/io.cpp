@@ -302,6 +302,11 @@ std::string planToSvg(const PlanInput& input, const Plan& plan) {
   }
   if (!plan.uncovered.empty())
     s << "<path d=\"" << pathData(plan.uncovered) << "\" fill=\"#e00000\" fill-rule=\"nonzero\" stroke=\"none\"/>\n";
+  // Automatic tool choice: the neck lines the pocket was subdivided along.
+  if (plan.selection)
+    for (const Neck& n : plan.selection->necks)
+      s << "<line x1=\"" << n.a.x << "\" y1=\"" << -n.a.y << "\" x2=\"" << n.b.x << "\" y2=\"" << -n.b.y
+        << "\" stroke=\"#d000d0\" stroke-width=\"" << 3 * sw << "\" stroke-dasharray=\"" << 6 * sw << "\"/>\n";
   // Depths over a sculptured floor: a dot at each plunge, dark (deep) to light (high).
   double zLo = INFINITY, zHi = -INFINITY;
   for (const Plunge& p : plan.plunges) {
