@@ -166,6 +166,8 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         with open(os.path.join(workdir, "plan.svg"), "w") as f:
             f.write(picture)
         obj.Summary = summary(plan)
+        for warning in plan.get("warnings", []):
+            FreeCAD.Console.PrintWarning("%s: %s\n" % (obj.Label, warning))
         # Automatic choice: plungers the plan does not use stay idle (no tool change).
         used = {p["tool_id"] for p in plan["plunges"]}
         for comp in companions(obj):
@@ -208,6 +210,8 @@ def summary(plan):
     parts = ["T%d %g mm: %d" % (t["tool_id"], t["diameter"], t["count"]) for t in s["per_tool"]]
     text = "%d plunges (%s), coverage %.2f %%, travel %.0f mm, about %.0f min" % (
         s["plunge_count"], ", ".join(parts), 100 * s["coverage"], s["travel_length"], s["estimated_minutes"])
+    if plan.get("warnings"):
+        text += "; " + "; ".join(plan["warnings"])
     selection = plan.get("tool_selection")
     if selection:
         text += "; plungers chosen: %s of %s" % ("/".join("%g" % d for d in selection["chosen"]),

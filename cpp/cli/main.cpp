@@ -54,6 +54,7 @@ int main(int argc, char** argv) {
     in.baseDir = slash == std::string::npos ? "." : input.substr(0, slash);
     const plunge::Plan plan = plunge::plan(in);
     writeFile(output, plunge::planToJson(plan));
+    for (const std::string& w : plan.warnings) std::cerr << "warning: " << w << "\n";
     // The reasoning of an automatic tool choice, for the user (JSON has it too).
     if (plan.selection && !output.empty())
       for (const std::string& line : plan.selection->reasoning) std::cout << line << "\n";

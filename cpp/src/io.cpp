@@ -209,6 +209,7 @@ std::string planToJson(const Plan& plan) {
                   {"planning_seconds", s.planningSeconds},
                   {"hex_reference_count", s.hexReferenceCount},
                   {"estimated_minutes", s.estimatedMinutes}};
+  if (!plan.warnings.empty()) out["warnings"] = plan.warnings;
   if (plan.selection) {
     const ToolSelection& sel = *plan.selection;
     json necks = json::array(), parts = json::array(), sets = json::array();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <future>
+#include <iomanip>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -191,6 +192,12 @@ Plan plan(PlanInput in) {
   out.stats.coveredArea = cover.coveredArea;
   out.stats.coverage = cover.accessibleArea > 0 ? cover.coveredArea / cover.accessibleArea : 0.0;
   out.stats.hexReferenceCount = cover.accessibleArea / (1.5 * std::sqrt(3.0) * radii.front() * radii.front());
+  if (in.strategy == "packing" && out.stats.coverage < in.minCoverage - 1e-3) {
+    std::ostringstream w;
+    w << std::fixed << std::setprecision(2) << "coverage " << 100 * out.stats.coverage
+      << " % is below min_coverage " << 100 * in.minCoverage << " %: material stays along the walls";
+    out.warnings.push_back(w.str());
+  }
   out.stats.estimatedMinutes = estimateMinutes(out, in.tools, in.safeZ, in.timeModel);
   out.stats.planningSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

@@ -129,6 +129,25 @@ TEST_P(Shapes, InvariantsHold) {
     EXPECT_GE(test::bruteWallDistance(loops, {q.x, q.y}), q.diameter / 2 + in.radialAllowance - 1e-6);
   }
   EXPECT_GE(p.stats.coverage, 0.995);
+  EXPECT_TRUE(p.warnings.empty());
 }
 
 INSTANTIATE_TEST_SUITE_P(TestShapes, Shapes, ::testing::Values("convex", "concave", "islands", "freeform", "neck"));
+
+// A plan short of min_coverage says so (never a silent shortfall); one that meets it says nothing.
+TEST(Plan, CoverageShortfallIsAWarning) {
+  PlanInput in;
+  in.boundary = {{0, 0}, {60, 0}, {60, 40}, {0, 40}};
+  in.tools = {{16, 1}, {6, 2}};
+  in.topZ = 0;
+  in.safeZ = 5;
+  in.floor.z = -10;
+  const Plan ok = plan(in);
+  EXPECT_GE(ok.stats.coverage, in.minCoverage);
+  EXPECT_TRUE(ok.warnings.empty());
+  in.minCoverage = 1.0;  // wall cusps always remain
+  const Plan short_ = plan(in);
+  ASSERT_EQ(short_.warnings.size(), 1u);
+  EXPECT_NE(short_.warnings[0].find("below min_coverage"), std::string::npos);
+  EXPECT_NE(planToJson(short_).find("\"warnings\""), std::string::npos);
+}

@@ -92,6 +92,9 @@ struct Plan {
   Polygons accessible;
   Polygons uncovered;
   std::optional<ToolSelection> selection;  // with "tools": "auto"
+  // What the user should know about a plan that is valid but short of what was
+  // asked (for example coverage below min_coverage); JSON "warnings".
+  std::vector<std::string> warnings;
 };
 
 // Checks every number and option of the input; throws plunge::Error naming the problem.
