@@ -27,7 +27,14 @@ translate = FreeCAD.Qt.translate
 
 # Properties the job's setup sheet can carry defaults for.
 SETUP_PROPERTIES = ["RadialAllowance", "FloorAllowance", "ChordTolerance", "UseCannedCycle", "PeckDepth",
-                    "MinCoverage", "AutoSelectTools"]
+                    "MinCoverage", "AutoSelectTools", "Strategy"]
+
+# Strategy property values -> the planner's "strategy" and "grid" input.
+STRATEGIES = {
+    "Packing": {},
+    "Grid (honeycomb)": {"strategy": "grid", "grid": {"pattern": "honeycomb"}},
+    "Grid (square)": {"strategy": "grid", "grid": {"pattern": "square"}},
+}
 
 
 def SetupProperties():
@@ -83,6 +90,11 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         _add(obj, "App::PropertyBool", "AutoSelectTools",
              "Let the planner choose which of the plungers to use (shortest estimated time); the others stay idle",
              False)
+        if not hasattr(obj, "Strategy"):
+            _add(obj, "App::PropertyEnumeration", "Strategy",
+                 "Packing and covering (default), or a regular grid of plunges (the baseline CAM systems offer)")
+            obj.Strategy = list(STRATEGIES)
+            obj.Strategy = "Packing"
         _add(obj, "App::PropertyString", "Summary", "The last plan: plunges per tool, coverage, travel, time",
              "", mode=1)
         _add(obj, "App::PropertyString", "PlanData", "The last plan and its input (JSON), read by the companions",
@@ -151,6 +163,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
                 raise ValueError("the safe height is above the clearance height")
             if obj.StartDepth.Value <= obj.FinalDepth.Value:
                 raise ValueError("the start depth must be above the final depth")
+            data.update(STRATEGIES.get(obj.Strategy, {}))
             if obj.AutoSelectTools:
                 data["tool_library"] = data.pop("tools")
                 data["tools"] = "auto"

@@ -56,6 +56,8 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             obj.UseCannedCycle = self.form.useCannedCycle.isChecked()
         if obj.AutoSelectTools != self.form.autoSelectTools.isChecked():
             obj.AutoSelectTools = self.form.autoSelectTools.isChecked()
+        if obj.Strategy != self.form.strategy.currentText():
+            obj.Strategy = self.form.strategy.currentText()
         if abs(obj.MinCoverage - self.form.minCoverage.value()) > 1e-9:
             obj.MinCoverage = self.form.minCoverage.value()
         self.updateCoolant(obj, self.form.coolantController)
@@ -72,6 +74,11 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             spin.updateSpinBox()
         self.form.useCannedCycle.setChecked(obj.UseCannedCycle)
         self.form.autoSelectTools.setChecked(obj.AutoSelectTools)
+        self.form.strategy.blockSignals(True)
+        self.form.strategy.clear()
+        self.form.strategy.addItems(obj.getEnumerationsOfProperty("Strategy"))
+        self.form.strategy.setCurrentText(obj.Strategy)
+        self.form.strategy.blockSignals(False)
         self.form.minCoverage.setValue(obj.MinCoverage)
         self.setupCoolant(obj, self.form.coolantController)
         self.form.toolControllers.blockSignals(True)
@@ -92,6 +99,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             self.form.peckDepth.editingFinished,
             self.form.useCannedCycle.stateChanged,
             self.form.autoSelectTools.stateChanged,
+            self.form.strategy.currentIndexChanged,
             self.form.minCoverage.editingFinished,
             self.form.coolantController.currentIndexChanged,
             self.form.toolControllers.itemChanged,

@@ -191,3 +191,17 @@ def test_auto_select_tools(doc, tmp_path):
     doc.recompute()
     assert all(c.Active for c in comps)
     assert "tool_selection" not in PlungeRough.plan_of(op)
+
+
+def test_grid_strategy(doc):
+    """The grid baseline through the op: gouge-free, and it leaves more than packing."""
+    job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
+    packed = PlungeRough.plan_of(op)["stats"]["coverage"]
+    op.Strategy = "Grid (honeycomb)"
+    doc.recompute()
+    plan = PlungeRough.plan_of(op)
+    plunges = plunges_of(job)
+    assert len(plunges) == plan["stats"]["plunge_count"] > 0
+    assert_no_gouge(job.Model.Group[0].Shape, op.Base[0][1], plunges, op.StartDepth.Value, 0.5, 0.3, every=2)
+    assert plan["stats"]["coverage"] < packed
+    assert op.getEnumerationsOfProperty("Strategy") == ["Packing", "Grid (honeycomb)", "Grid (square)"]
