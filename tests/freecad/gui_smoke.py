@@ -112,6 +112,8 @@ def main():
             item.setCheckState(QtCore.Qt.Checked)
         else:
             item.setCheckState(QtCore.Qt.Unchecked)
+    result["strategies"] = [page.form.strategy.itemText(i) for i in range(page.form.strategy.count())]
+    result["auto_checkbox"] = page.form.autoSelectTools.isChecked()
     page.form.radialAllowance.setProperty("rawValue", 0.5)
     page.form.radialAllowance.editingFinished.emit()
     step("panel filled")

@@ -36,5 +36,7 @@ def test_gui_smoke():
     assert [d for _, d, _ in ops] == [20, 12, 6]
     assert all(n > 0 for _, _, n in ops)  # every tool plunges
     assert result["radial"] == 0.5  # the panel's value reached the op
+    assert result["strategies"] == ["Packing", "Grid (honeycomb)", "Grid (square)"]
+    assert result["auto_checkbox"] is False
     assert "coverage" in result["summary"]
     assert os.path.getsize(os.path.join(out, "plunge_rough_gui.png")) > 10000
