@@ -112,6 +112,9 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         if prop == "ToolControllers" and "Restore" not in obj.State and hasattr(obj, "PlanData"):
             syncCompanions(obj)
         if prop == "AutoSelectTools" and "Restore" not in obj.State and not obj.AutoSelectTools:
+            tcs = _tool_controllers(obj)
+            if tcs and obj.ToolController != tcs[0]:  # the largest plunger again
+                obj.ToolController = tcs[0]
             for comp in companions(obj):  # every plunger works again
                 if not comp.Active:
                     comp.Active = True
@@ -119,7 +122,9 @@ class ObjectPlungeRough(PathOp.ObjectOp):
     def opExecute(self, obj):
         obj.PlanData = ""
         tcs = _tool_controllers(obj)
-        if tcs and obj.ToolController != tcs[0]:
+        # With the automatic choice the operation itself takes the largest plunger
+        # the plan uses (below); otherwise its tool controller is the largest.
+        if tcs and obj.ToolController != tcs[0] and not (obj.AutoSelectTools and obj.ToolController in tcs):
             _report(obj, translate("PlungeRough", "the operation's tool controller must be its largest plunger (%s)")
                     % tcs[0].Label)
             return
@@ -181,15 +186,23 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         obj.Summary = summary(plan)
         for warning in plan.get("warnings", []):
             FreeCAD.Console.PrintWarning("%s: %s\n" % (obj.Label, warning))
-        # Automatic choice: plungers the plan does not use stay idle (no tool change).
+        # Automatic choice: this operation cuts with the largest plunger the plan
+        # uses; the companions of unused plungers, and the one of that plunger,
+        # stay idle, so the post writes no tool change without plunges after it.
         used = {p["tool_id"] for p in plan["plunges"]}
+        own_tc = tcs[0]
+        if obj.AutoSelectTools:
+            own_tc = next((tc for tc in tcs if int(tc.ToolNumber) in used), tcs[0])
+            if obj.ToolController != own_tc:
+                obj.ToolController = own_tc
         for comp in companions(obj):
-            active = not obj.AutoSelectTools or int(comp.ToolController.ToolNumber) in used
+            active = not obj.AutoSelectTools or (int(comp.ToolController.ToolNumber) in used
+                                                 and comp.ToolController != own_tc)
             if comp.Active != active:
                 comp.Active = active
-        own = [(p["x"], p["y"], p["z"]) for p in plan["plunges"] if p["tool_id"] == int(obj.ToolController.ToolNumber)]
+        own = [(p["x"], p["y"], p["z"]) for p in plan["plunges"] if p["tool_id"] == int(own_tc.ToolNumber)]
         self.commandlist.extend(toolCommands(obj, own))
-        PathFeedRate.setFeedRate(self.commandlist, obj.ToolController)
+        PathFeedRate.setFeedRate(self.commandlist, own_tc)
 
 
 def planner():

@@ -164,32 +164,38 @@ def test_saved_and_restored(doc, tmp_path):
 
 
 def test_auto_select_tools(doc, tmp_path):
-    """The planner picks from the ticked plungers; the idle ones post no tool change."""
+    """The planner picks from the ticked plungers; every tool change the post writes
+    is followed by plunges (a 90 mm plunger fits nowhere: it must stay idle even
+    though it is the operation's largest)."""
     job = parts.make_job(doc, parts.islands_part())
     op, tcs = parts.add_plunge_rough(job, parts.floor_face_name(job.Model.Group[0].Shape, False),
-                                     (20, 16, 12, 8, 6), RadialAllowance=0.5, FloorAllowance=0.3,
+                                     (90, 20, 16, 12, 8, 6), RadialAllowance=0.5, FloorAllowance=0.3,
                                      AutoSelectTools=True)
     plan = PlungeRough.plan_of(op)
+    assert "Touched" not in op.State  # switching its own tool controller left nothing to recompute
     selection = plan["tool_selection"]
     chosen = selection["chosen"]
     assert set(chosen) <= {20, 16, 12, 8, 6} and chosen[-1] == 6
     assert "chosen" in op.Summary
+    assert float(op.ToolController.Tool.Diameter) == chosen[0]  # the op cuts with the largest chosen
     plunges = plunges_of(job)
     assert len(plunges) == plan["stats"]["plunge_count"]
+    assert sorted(float(tc.Tool.Diameter) for tc, *_ in plunges) == sorted(p["diameter"] for p in plan["plunges"])
     assert {float(tc.Tool.Diameter) for tc, *_ in plunges} == set(chosen)
     comps = PlungeRough.companions(op)
-    idle = [c for c in comps if not c.Active]
-    assert idle, "the library holds sizes the selection does not take"
-    assert all(float(c.ToolController.Tool.Diameter) not in chosen for c in idle)
-    assert all(float(c.ToolController.Tool.Diameter) in chosen for c in comps if c.Active)
+    assert [c for c in comps if not c.Active], "the library holds sizes the selection does not take"
     assert_no_gouge(job.Model.Group[0].Shape, op.Base[0][1], plunges, op.StartDepth.Value, 0.5, 0.3, every=2)
     text = parts.post_job(job, "linuxcnc", "--no-header --no-show-editor", tmp_path)
-    changed = {int(w[1:]) for line in text.splitlines() if line.startswith("M6") for w in line.split() if w[0] == "T"}
-    assert all(int(c.ToolController.ToolNumber) not in changed for c in idle)
-    # Off again: every plunger works.
+    changed = [int(w[1:]) for line in text.splitlines() if line.startswith("M6") for w in line.split() if w[0] == "T"]
+    number = {float(tc.Tool.Diameter): int(tc.ToolNumber) for tc in tcs}
+    assert changed == [number[d] for d in chosen]  # one change per chosen plunger, largest first
+    # Recomputing again changes nothing; off again, every plunger works with the largest first.
+    doc.recompute()
+    assert PlungeRough.plan_of(op)["plunges"] == plan["plunges"] and "Invalid" not in op.State
     op.AutoSelectTools = False
     doc.recompute()
     assert all(c.Active for c in comps)
+    assert float(op.ToolController.Tool.Diameter) == 90
     assert "tool_selection" not in PlungeRough.plan_of(op)
 
 
