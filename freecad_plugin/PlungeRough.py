@@ -200,8 +200,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
                                                  and comp.ToolController != own_tc)
             if comp.Active != active:
                 comp.Active = active
-        own = [(p["x"], p["y"], p["z"]) for p in plan["plunges"] if p["tool_id"] == int(own_tc.ToolNumber)]
-        self.commandlist.extend(toolCommands(obj, own))
+        self.commandlist.extend(toolCommands(obj, plunges_of_tool(plan, own_tc)))
         PathFeedRate.setFeedRate(self.commandlist, own_tc)
 
 
@@ -212,6 +211,12 @@ def planner():
     except ImportError as e:
         raise ValueError("the planner module is not installed (%s); run the README's main command" % e)
     return plunge
+
+
+def plunges_of_tool(plan, tc):
+    """(x, y, z) of the plan's plunges made by the tool controller's tool, in order."""
+    number = int(tc.ToolNumber)
+    return [(p["x"], p["y"], p["z"]) for p in plan["plunges"] if p["tool_id"] == number]
 
 
 def toolCommands(op, plunges):
@@ -258,11 +263,10 @@ class ObjectPlungeRoughTool(PathOp.ObjectOp):
 
     def opExecute(self, obj):
         main = obj.PlanOperation
-        if main is None or not main.PlanData:
+        plan = plan_of(main) if main is not None else None
+        if plan is None:
             return
-        plan = json.loads(main.PlanData)["plan"]
-        number = int(obj.ToolController.ToolNumber)
-        plunges = [(p["x"], p["y"], p["z"]) for p in plan["plunges"] if p["tool_id"] == number]
+        plunges = plunges_of_tool(plan, obj.ToolController)
         if obj.CoolantMode != main.CoolantMode:
             obj.CoolantMode = main.CoolantMode
         self.commandlist.extend(toolCommands(main, plunges))

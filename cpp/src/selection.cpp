@@ -16,16 +16,15 @@ namespace plunge {
 
 double estimateMinutes(const Plan& plan, const std::vector<Tool>& tools, double safeZ, const TimeModel& m) {
   double minutes = 0.0;
-  std::vector<int> used;
   for (const Plunge& p : plan.plunges) {
     double feed = 200.0;
     for (const Tool& t : tools)
       if (t.id == p.toolId) feed = t.feed;
     const double depth = safeZ - p.z;
     minutes += depth / feed + depth / m.retractRate;
-    if (std::find(used.begin(), used.end(), p.toolId) == used.end()) used.push_back(p.toolId);
   }
-  return minutes + plan.stats.travelLength / m.rapidRate + used.size() * m.toolChangeSeconds / 60.0;
+  // perTool lists the tools that plunge: one change each.
+  return minutes + plan.stats.travelLength / m.rapidRate + plan.stats.perTool.size() * m.toolChangeSeconds / 60.0;
 }
 
 namespace {
@@ -135,17 +134,20 @@ Plan planWithToolSelection(const PlanInput& input) {
     const double nTools = included.size() + 1.0;
     const double lb = wT * (nTools * in.timeModel.toolChangeSeconds / 60.0 + accArea / (M_PI * rBig * rBig) * perPlungeLB) +
                       wN * nTools;
+    if (lb >= best) {  // pruned: this set, and with every set adding smaller candidates when inside the tree
+      ToolSetResult r;
+      r.diameters = included;
+      r.diameters.push_back(smallest);
+      r.subtree = i < others.size();
+      r.minutes = r.weighted = lb;
+      sel.sets.push_back(r);
+      return;
+    }
     if (i == others.size()) {
       std::vector<double> set = included;
       set.push_back(smallest);
       ToolSetResult r;
       r.diameters = set;
-      if (lb >= best) {
-        r.minutes = lb;
-        r.weighted = lb;
-        sel.sets.push_back(r);
-        return;
-      }
       PlanInput sub = in;
       sub.autoTools = false;
       sub.tools.clear();
@@ -162,15 +164,6 @@ Plan planWithToolSelection(const PlanInput& input) {
         chosen = set;
         bestPlan = std::move(p);
       }
-      return;
-    }
-    if (lb >= best) {  // prune the whole subtree: record it once
-      ToolSetResult r;
-      r.diameters = included;
-      r.diameters.push_back(smallest);
-      r.subtree = true;
-      r.minutes = r.weighted = lb;
-      sel.sets.push_back(r);
       return;
     }
     included.push_back(others[i]);
