@@ -1,22 +1,18 @@
 # PlungeRough FreeCAD addon: GUI initialisation.
-# FreeCAD 0.20 has no workbench manipulator: the Plunge Rough command joins the
-# Path workbench's menu and "New Operations" toolbar whenever that workbench is
-# activated (FreeCAD 1.0 would offer FreeCADGui.addWorkbenchManipulator).
+# Registers the Plunge Rough command and puts it into the CAM workbench (FreeCAD
+# 1.0: a workbench manipulator) or the Path workbench (0.20: added to its menu and
+# toolbar on activation). See freecad_plugin/command.py.
 
 
-def _plungeRoughWorkbenchActivated(name):
-    if name not in ("PathWorkbench", "CAMWorkbench"):
-        return
+def _plungeRoughInstall():
     try:
-        from freecad_plugin import PlungeRoughGui
+        from freecad_plugin import command
 
-        PlungeRoughGui.install()
-    except Exception as e:  # never break the workbench
+        command.install()
+    except Exception as e:  # never break FreeCAD's start
         import FreeCAD
 
         FreeCAD.Console.PrintError("PlungeRough: the command could not be added (%s)\n" % e)
 
 
-import FreeCADGui  # noqa: E402
-
-FreeCADGui.getMainWindow().workbenchActivated.connect(_plungeRoughWorkbenchActivated)
+_plungeRoughInstall()

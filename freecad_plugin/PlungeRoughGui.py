@@ -11,20 +11,15 @@ import FreeCADGui
 from PySide import QtCore, QtGui
 
 from freecad_plugin import PlungeRough
-from freecad_plugin.compat import PathLog, PathUtils, gui_modules
+from freecad_plugin.command import ADDON, COMMAND, ICON, MENU_TEXT, TOOL_TIP
+from freecad_plugin.compat import PathUtils, gui_modules, gui_util
 
 PathOpGui, PathSelection = gui_modules()
-try:
-    import PathScripts.PathGui as PathGui
-except ImportError:  # 0.21+
-    import Path.Base.Gui.Util as PathGui
+PathGui = gui_util()
 
 translate = FreeCAD.Qt.translate
 
-ADDON = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ICON = os.path.join(ADDON, "resources", "icons", "PlungeRough.svg")
 PANEL = os.path.join(ADDON, "resources", "panels", "PlungeRoughEdit.ui")
-COMMAND = "PlungeRough"
 
 
 class TaskPanelOpPage(PathOpGui.TaskPanelPage):
@@ -157,25 +152,10 @@ def _adoptCompanions(obj):
             CompanionViewProvider(comp.ViewObject)
 
 
-class CommandPlungeRough:
-    """The "Plunge Rough" command of the Path workbench."""
-
-    def __init__(self):
-        self.res = PathOpGui.CommandResources(
-            "PlungeRough", PlungeRough.Create, TaskPanelOpPage, ICON,
-            QtCore.QT_TRANSLATE_NOOP("PlungeRough", "Plunge Rough"), None,
-            QtCore.QT_TRANSLATE_NOOP("PlungeRough", "Rough the selected pocket floor by plunging: packed and "
-                                     "covered plunges of several plunger sizes, short tours, per-plunge depths"))
-
-    def GetResources(self):
-        return {"Pixmap": ICON, "MenuText": self.res.menuText, "ToolTip": self.res.toolTip}
-
-    def IsActive(self):
-        doc = FreeCAD.ActiveDocument
-        return doc is not None and any(o.Name.startswith("Job") for o in doc.Objects)
-
-    def Activated(self):
-        return create(self.res)
+def create_from_command():
+    """What the Plunge Rough command runs: a new operation on the selection."""
+    res = PathOpGui.CommandResources(COMMAND, PlungeRough.Create, TaskPanelOpPage, ICON, MENU_TEXT, None, TOOL_TIP)
+    return create(res)
 
 
 def create(res):
@@ -209,42 +189,14 @@ class _DocumentObserver:
         pass
 
 
-def _action():
-    """The one QAction running the command (a child of the main window)."""
-    mw = FreeCADGui.getMainWindow()
-    action = mw.findChild(QtGui.QAction, "PlungeRoughAction")
-    if action is None:
-        action = QtGui.QAction(QtGui.QIcon(ICON), translate("PlungeRough", "Plunge Rough"), mw)
-        action.setObjectName("PlungeRoughAction")
-        action.setToolTip(CommandPlungeRough().res.toolTip)
-        action.triggered.connect(lambda: FreeCADGui.runCommand(COMMAND))
-    return action
+_observer = []
 
 
-def insertIntoPathWorkbench():
-    """Adds the command to the Path menu and the "New Operations" toolbar (FreeCAD
-    rebuilds both when the workbench is activated, so this runs every time)."""
-    mw = FreeCADGui.getMainWindow()
-    action = _action()
-    for bar in mw.findChildren(QtGui.QToolBar):
-        if bar.objectName() == "New Operations" or bar.windowTitle() == "New Operations":
-            if action not in bar.actions():
-                bar.addAction(action)
-    for menu_action in mw.menuBar().actions():
-        if menu_action.text().replace("&", "") == "Path" and menu_action.menu():
-            if action not in menu_action.menu().actions():
-                menu_action.menu().addAction(action)
+def _watch_documents():
+    """Companions made while editing get their view provider (once per session)."""
+    if not _observer:
+        _observer.append(_DocumentObserver())
+        FreeCAD.addDocumentObserver(_observer[0])
 
 
-_installed = False
-
-
-def install():
-    """Registers the command and the observer (once) and puts it into the Path
-    workbench's menu and toolbar (InitGui.py calls this when Path is activated)."""
-    global _installed
-    if not _installed:
-        _installed = True
-        FreeCADGui.addCommand(COMMAND, CommandPlungeRough())
-        FreeCAD.addDocumentObserver(_DocumentObserver())
-    insertIntoPathWorkbench()
+_watch_documents()

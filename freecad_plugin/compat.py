@@ -1,9 +1,15 @@
-"""One place for FreeCAD's Path module names, which moved between versions.
+"""The one place that knows how FreeCAD's Path/CAM API differs between versions.
 
-0.20 (tested): PathScripts.*; 0.21 and 1.0 (read in source, untested here):
-Path.Op.Base, Path.Main.Job, ... . Everything else imports from here.
+Supported and tested: FreeCAD 0.20.2 (Debian 12: the "Path" workbench, modules
+under PathScripts) and FreeCAD 1.0 (Debian 13: the "CAM" workbench, modules
+under Path.*). 0.21 has 1.0's module names with 0.20's workbench name; it is
+handled by the same look-ups but not tested. Everything else imports from here.
 """
 import importlib
+import os
+import tempfile
+
+import FreeCAD
 
 
 def _first(*names):
@@ -25,6 +31,25 @@ PathFeedRate = _first("Path.Base.FeedRate", "PathFeedRate")
 PathSetupSheet = _first("Path.Base.SetupSheet", "PathScripts.PathSetupSheet")
 
 
+def version():
+    """FreeCAD's (major, minor) version, e.g. (0, 20) or (1, 0)."""
+    major, minor = FreeCAD.Version()[:2]
+    return int(major), int(minor)
+
+
+def workbench_name():
+    """The CAM workbench's name: "CAMWorkbench" from 1.0 on, "PathWorkbench" before."""
+    try:
+        import FreeCADGui
+        names = FreeCADGui.listWorkbenches()
+        for name in ("CAMWorkbench", "PathWorkbench"):
+            if name in names:
+                return name
+    except (ImportError, AttributeError):
+        pass
+    return "CAMWorkbench" if version() >= (1, 0) else "PathWorkbench"
+
+
 def gui_modules():
     """The GUI-side modules (only importable with a GUI)."""
     op_gui = _first("Path.Op.Gui.Base", "PathScripts.PathOpGui")
@@ -32,11 +57,78 @@ def gui_modules():
     return op_gui, selection
 
 
+def gui_util():
+    """QuantitySpinBox and friends (GUI only)."""
+    return _first("Path.Base.Gui.Util", "PathScripts.PathGui")
+
+
+def job_gui():
+    """The Job's GUI module, whose Create(base, template, openTaskPanel) is what
+    the Job command runs (GUI only)."""
+    return _first("Path.Main.Gui.Job", "PathScripts.PathJobGui")
+
+
+def find_tool_bit(name):
+    """A tool bit file (.fctb) shipped with FreeCAD or in the user's tool folders,
+    found the way FreeCAD finds them (Mod/Path/Tools/Bit in 0.20, Mod/CAM/Tools/Bit
+    in 1.0, plus the preferences' search paths); None if there is none."""
+    return PathToolBit.findToolBit(name)
+
+
+def voxel_simulator():
+    """FreeCAD's voxel (height map) simulator, PathSimulator.PathSim: the engine
+    behind the GUI's Path simulator in 0.20 and its legacy simulator in 1.0.
+    Runs headless: BeginSimulation, SetToolShape, ApplyCommand, GetResultMesh."""
+    import PathSimulator
+    return PathSimulator.PathSim()
+
+
+def simulator_command():
+    """The GUI command of the best simulator this FreeCAD has: 1.0's OpenGL CAM
+    simulator (CAM_SimulatorGL), else the Path simulator (Path_Simulator)."""
+    import FreeCADGui
+    commands = FreeCADGui.listCommands()
+    for name in ("CAM_SimulatorGL", "CAM_Simulator", "Path_Simulator"):
+        if name in commands:
+            return name
+    return None
+
+
 def post_module(name):
-    """A post processor module by its short name ("linuxcnc", "grbl")."""
+    """A post processor script module by its short name ("linuxcnc", "grbl")."""
     return _first("Path.Post.scripts.%s_post" % name, "PathScripts.post.%s_post" % name)
 
 
-def post_command_module():
-    """The module of the Job's post command (buildPostList), imported on demand."""
-    return _first("Path.Post.Command", "PathScripts.PathPost")
+def post_job(job, name, args):
+    """The whole job's G-code through the named post processor, as the Job's post
+    command makes it (operations and tool changes in the job's output order).
+
+    1.0: Path.Post.Processor.PostProcessorFactory with the job's PostProcessorArgs.
+    0.20: PathPost.CommandPathPost().buildPostList + the post module's export; the
+    0.20 grbl post insists on writing a file, so it gets a temporary one."""
+    try:
+        from Path.Post.Processor import PostProcessorFactory
+    except ImportError:
+        PostProcessorFactory = None
+    if PostProcessorFactory is not None:
+        saved = job.PostProcessorArgs
+        job.PostProcessorArgs = args
+        try:
+            post = PostProcessorFactory.get_post_processor(job, name)
+            if post is None:
+                raise ValueError("no post processor named %r" % name)
+            return "\n".join(gcode or "" for _, gcode in post.export())
+        finally:
+            job.PostProcessorArgs = saved
+    PathPost = _first("PathScripts.PathPost")
+    module = post_module(name)
+    gcode = []
+    for objects in PathPost.CommandPathPost().buildPostList(job):
+        with tempfile.TemporaryDirectory() as scratch:
+            out = os.path.join(scratch, "post.nc")
+            text = module.export(objects, out if name == "grbl" else "-", args)
+            if name == "grbl":
+                with open(out) as f:
+                    text = f.read()
+        gcode.append(text or "")
+    return "\n".join(gcode)

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Installs what PlungeRough needs from Debian 12 (only what is missing) and builds it.
+# Installs what PlungeRough needs from Debian 12 or 13 (only what is missing) and builds it.
 # Idempotent: run it as often as you like; both README commands start with it.
 set -eu
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -8,6 +8,7 @@ PACKAGES="cmake g++ make pkg-config
   libpolyclipping-dev libboost-dev libcgal-dev nlohmann-json3-dev libcli11-dev
   libeigen3-dev libmuparser-dev libtbb-dev
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
+  libocct-visualization-dev
   pybind11-dev python3-dev libgtest-dev python3-pytest python3-shapely
   freecad xvfb xauth libgl1-mesa-dri"
 
@@ -22,5 +23,6 @@ if [ -n "$missing" ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
 fi
 
-cmake -S "$ROOT" -B "$ROOT/build" -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=/usr/bin/python3 >/dev/null
+cmake -S "$ROOT" -B "$ROOT/build" -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=/usr/bin/python3 \
+  -DPLUNGE_WERROR="${PLUNGE_WERROR:-OFF}" >/dev/null
 cmake --build "$ROOT/build" -j"$(nproc)"

@@ -55,12 +55,12 @@ py::object fromJson(const json& j) {
     case json::value_t::object: {
       py::dict d;
       for (auto it = j.begin(); it != j.end(); ++it) d[py::str(it.key())] = fromJson(it.value());
-      return std::move(d);
+      return d;
     }
     case json::value_t::array: {
       py::list l;
       for (const json& v : j) l.append(fromJson(v));
-      return std::move(l);
+      return l;
     }
     case json::value_t::string: return py::str(j.get<std::string>());
     case json::value_t::boolean: return py::bool_(j.get<bool>());

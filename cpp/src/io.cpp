@@ -79,11 +79,12 @@ std::vector<Tool> toolList(const json& ts, const std::string& what) {
   return tools;
 }
 
-const json& object(const json& j, const char* key, const std::set<std::string>& keys) {
+// Checks j[key] is an object with only the given keys. Returns nothing: a
+// reference returned past a temporary key set reads as dangling to GCC 14.
+void checkObject(const json& j, const char* key, const std::set<std::string>& keys) {
   const json& o = j[key];
   if (!o.is_object()) throw Error(std::string(key) + ": expected an object");
   onlyKeys(o, keys, std::string(key) + ": ");
-  return o;
 }
 
 }  // namespace
@@ -168,20 +169,23 @@ PlanInput planInputFromJson(const std::string& text) {
   }
   if (j.contains("start")) in.start = point(j["start"], "start");
   if (j.contains("selection")) {
-    const json& o = object(j, "selection", {"weight_time", "weight_tools", "rise_factor"});
+    checkObject(j, "selection", {"weight_time", "weight_tools", "rise_factor"});
+    const json& o = j["selection"];
     if (o.contains("weight_time")) in.selection.weightTime = number(o["weight_time"], "selection.weight_time");
     if (o.contains("weight_tools")) in.selection.weightTools = number(o["weight_tools"], "selection.weight_tools");
     if (o.contains("rise_factor")) in.selection.riseFactor = number(o["rise_factor"], "selection.rise_factor");
   }
   if (j.contains("time_model")) {
-    const json& o = object(j, "time_model", {"rapid_rate", "retract_rate", "tool_change_seconds"});
+    checkObject(j, "time_model", {"rapid_rate", "retract_rate", "tool_change_seconds"});
+    const json& o = j["time_model"];
     if (o.contains("rapid_rate")) in.timeModel.rapidRate = number(o["rapid_rate"], "time_model.rapid_rate");
     if (o.contains("retract_rate")) in.timeModel.retractRate = number(o["retract_rate"], "time_model.retract_rate");
     if (o.contains("tool_change_seconds"))
       in.timeModel.toolChangeSeconds = number(o["tool_change_seconds"], "time_model.tool_change_seconds");
   }
   if (j.contains("grid")) {
-    const json& o = object(j, "grid", {"pattern", "step"});
+    checkObject(j, "grid", {"pattern", "step"});
+    const json& o = j["grid"];
     if (o.contains("pattern")) {
       if (!o["pattern"].is_string()) throw Error("grid.pattern: expected \"square\" or \"honeycomb\"");
       in.gridPattern = o["pattern"].get<std::string>();

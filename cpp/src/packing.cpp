@@ -316,8 +316,8 @@ class Packer {
   bool hasLattice_ = false;  // anchored at the first circle of the largest tool
   Vec2 latOrigin_, latDir_;
   std::vector<Candidate> cands_;
-  bgi::rtree<PointValue, bgi::rstar<16>> candIndex_;
-  bgi::rtree<PointValue, bgi::rstar<16>> diskIndex_;
+  bgi::rtree<PointValue, bgi::quadratic<16>> candIndex_;
+  bgi::rtree<PointValue, bgi::quadratic<16>> diskIndex_;
   std::set<Key> queue_;
 };
 

@@ -1,12 +1,15 @@
 """The bundled example part (a mould cavity with a free-form wall, a free-form
 island and a B-spline floor) and the Job helpers the demo and the tests share."""
+import json
 import math
+import os
+import tempfile
 
 import FreeCAD
 import Part
 
 from freecad_plugin import PlungeRough
-from freecad_plugin.compat import PathJob, PathToolBit, PathToolController, post_module
+from freecad_plugin.compat import PathJob, PathToolBit, PathToolController
 
 V = FreeCAD.Vector
 
@@ -79,9 +82,27 @@ def make_job(doc, shape, name="Part"):
     return job
 
 
-def add_tool_controller(job, diameter, number, template="5mm_Endmill.fctb"):
-    bit = PathToolBit.Factory.CreateFrom(FreeCAD.getHomePath() + "Mod/Path/Tools/Bit/" + template)
-    bit.Diameter = diameter
+def write_tool_bit(diameter, folder):
+    """A plunger's tool bit file (.fctb), as FreeCAD's tool library editor writes
+    one per tool: FreeCAD builds the bit's solid (what the simulator cuts with)
+    from these parameters. Setting Diameter on a bit made from another size's
+    file would not rebuild that solid."""
+    os.makedirs(folder, exist_ok=True)
+    path = os.path.join(folder, "%gmm_Plunger.fctb" % diameter)
+    bit = {"version": 2, "name": "%g mm plunger" % diameter, "shape": "endmill.fcstd",
+           "parameter": {"Diameter": "%g mm" % diameter, "ShankDiameter": "%g mm" % diameter,
+                         "CuttingEdgeHeight": "50 mm", "Length": "100 mm"},
+           "attribute": {}}
+    with open(path, "w") as f:
+        json.dump(bit, f, indent=2)
+    return path
+
+
+def add_tool_controller(job, diameter, number, bit_folder=None):
+    """A plunger tool controller from its own .fctb (in bit_folder, default a
+    temporary folder), added to the job."""
+    folder = bit_folder or os.path.join(tempfile.gettempdir(), "plungerough-bits")
+    bit = PathToolBit.Factory.CreateFrom(write_tool_bit(diameter, folder))
     tc = PathToolController.Create("TC: %g mm plunger" % diameter, tool=bit, toolNumber=number)
     tc.VertFeed = "150 mm/min"
     tc.HorizFeed = "600 mm/min"
@@ -91,14 +112,14 @@ def add_tool_controller(job, diameter, number, template="5mm_Endmill.fctb"):
     return tc
 
 
-def add_plunge_rough(job, face, diameters=(20, 12, 6), **properties):
+def add_plunge_rough(job, face, diameters=(20, 12, 6), bit_folder=None, **properties):
     """A Plunge Rough operation on the job's model face with one plunger tool
     controller per diameter (tool numbers from 2), recomputed. Tool controllers are
     added after the op: FreeCAD 0.20 asks the user to choose one when there are
     several, which fails headless."""
     doc = job.Document
     op = PlungeRough.Create("PlungeRough", parentJob=job)
-    tcs = [add_tool_controller(job, d, i + 2) for i, d in enumerate(diameters)]
+    tcs = [add_tool_controller(job, d, i + 2, bit_folder) for i, d in enumerate(diameters)]
     clone = job.Model.Group[0]
     op.Base = [(clone, [face])]
     for name, value in properties.items():
@@ -106,20 +127,3 @@ def add_plunge_rough(job, face, diameters=(20, 12, 6), **properties):
     op.ToolControllers = tcs
     doc.recompute()
     return op, tcs
-
-
-def post_job(job, name, args, scratch):
-    """The job's G-code through the named post processor, as the Job's post command
-    does; scratch is a folder for posts that insist on writing a file."""
-    import os
-    from freecad_plugin.compat import post_command_module
-    gcode = []
-    for objs in post_command_module().CommandPathPost().buildPostList(job):
-        if name == "grbl":  # grbl_post always writes its file (0.20) and returns None
-            out = os.path.join(str(scratch), "grbl.nc")
-            post_module(name).export(objs, out, args)
-            with open(out) as f:
-                gcode.append(f.read())
-        else:
-            gcode.append(post_module(name).export(objs, "-", args))
-    return "\n".join(gcode)

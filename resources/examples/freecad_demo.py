@@ -27,18 +27,20 @@ def fail(message):
 def main():
     import example_part
     import plunge
-    from freecad_plugin import PlungeRough
+    from freecad_plugin import PlungeRough, compat
 
     os.makedirs(OUT, exist_ok=True)
     doc = FreeCAD.newDocument("PlungeExample")
     job = example_part.make_job(doc, example_part.freeform_part(sculptured=True))
     face = example_part.floor_face_name(job.Model.Group[0].Shape, sculptured=True)
-    op, tcs = example_part.add_plunge_rough(job, face, (20, 12, 6), RadialAllowance=0.5, FloorAllowance=0.3)
+    # One tool bit file per plunger, as a tool library keeps them (out/bits/).
+    op, tcs = example_part.add_plunge_rough(job, face, (20, 12, 6), bit_folder=os.path.join(OUT, "bits"),
+                                            RadialAllowance=0.5, FloorAllowance=0.3)
     plan = PlungeRough.plan_of(op)
     if plan is None:
         fail("the operation made no plan: " + op.Summary)
 
-    gcode = example_part.post_job(job, "linuxcnc", "--no-show-editor", OUT)
+    gcode = compat.post_job(job, "linuxcnc", "--no-show-editor")
     with open(os.path.join(OUT, "plunge_rough.ngc"), "w") as f:
         f.write(gcode)
     shutil.copyfile(PlungeRough.plan_picture(op), os.path.join(OUT, "plunge_rough.svg"))

@@ -99,9 +99,11 @@ TEST(Covering, RandomPocketsAreCoveredWithoutGouging) {
     // touches the edge of the accessible region.
     const Polygons acc = accessibleRegion(region, 2, allowance);
     const Polygons accEdge = poly::subtract(acc, poly::offset(acc, -0.01));
-    for (const Polygons& piece : poly::components(res.uncovered))
-      if (poly::area(piece) > 0.05 * 4)
+    for (const Polygons& piece : poly::components(res.uncovered)) {
+      if (poly::area(piece) > 0.05 * 4) {
         EXPECT_GT(poly::area(poly::intersect(piece, accEdge)), 0.0) << "standing pin in trial " << trial;
+      }
+    }
   }
 }
 

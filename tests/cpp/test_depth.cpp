@@ -78,7 +78,7 @@ TEST(Depth, ExpressionFloorAgainstBruteForce) {
   expectTight(*floor, solver, {6, 6}, flat);     // at the floor's edge
   std::mt19937 rng(4);
   std::uniform_real_distribution<double> ux(8, 92), uy(8, 67);
-  for (int i = 0; i < 40; ++i) expectTight(*floor, solver, {ux(rng), uy(rng)}, {CutterShape::Flat, 2 + i % 7, 0});
+  for (int i = 0; i < 40; ++i) expectTight(*floor, solver, {ux(rng), uy(rng)}, {CutterShape::Flat, 2.0 + i % 7, 0});
 }
 
 TEST(Depth, BallAndBullAgainstAnalyticPlane) {
@@ -110,7 +110,7 @@ TEST(Depth, BsplineFaceFromOcct) {
   const DepthSolver solver(*floor, {0, 0}, {100, 75}, 2.0);
   std::mt19937 rng(8);
   std::uniform_real_distribution<double> ux(8, 92), uy(8, 67);
-  for (int i = 0; i < 25; ++i) expectTight(*floor, solver, {ux(rng), uy(rng)}, {CutterShape::Flat, 3 + i % 6, 0});
+  for (int i = 0; i < 25; ++i) expectTight(*floor, solver, {ux(rng), uy(rng)}, {CutterShape::Flat, 3.0 + i % 6, 0});
   expectTight(*floor, solver, {30, 40}, {CutterShape::Flat, 5, 0});
   expectTight(*floor, solver, {30, 40}, {CutterShape::Ball, 5, 5});
 }

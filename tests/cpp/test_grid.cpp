@@ -47,7 +47,9 @@ TEST(Grid, SmallerToolsOnlyWhereTheLargerLeftMaterial) {
   o.step = 0.5;  // squares of half the diameter: the disks overlap everything but the wall cusps
   const CoverResult res = gridPlacements(region, {10, 2}, o);
   for (const CoverDisk& d : res.disks)
-    if (d.tool == 1) EXPECT_LT(test::bruteWallDistance({{{0, 0}, {160, 0}, {160, 100}, {0, 100}}}, d.center), 10.0);
+    if (d.tool == 1) {
+      EXPECT_LT(test::bruteWallDistance({{{0, 0}, {160, 0}, {160, 100}, {0, 100}}}, d.center), 10.0);
+    }
 }
 
 TEST(Grid, BadOptions) {

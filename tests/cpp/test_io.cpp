@@ -129,7 +129,9 @@ TEST(Io, GcodeParsesBackToThePlan) {
     if (v.count('X')) x = v['X'];
     if (v.count('Y')) y = v['Y'];
     if (v.count('Z')) z = v['Z'];
-    if (rapid && (v.count('X') || v.count('Y'))) EXPECT_DOUBLE_EQ(z, in.safeZ) << "rapid below the safe height";
+    if (rapid && (v.count('X') || v.count('Y'))) {
+      EXPECT_DOUBLE_EQ(z, in.safeZ) << "rapid below the safe height";
+    }
     if (feed) {
       EXPECT_TRUE(v.count('F'));
       seen.push_back({x, y, 0, tool, z});

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "plunge/medial.hpp"
@@ -32,7 +33,9 @@ TEST(Medial, AxisNodesAreInsideWithTheirTrueClearance) {
     const MedialAxis axis = medialAxis(region);
     ASSERT_GT(axis.edges.size(), 3u);
     for (size_t i = 0; i < axis.nodes.size(); ++i) {
-      if (axis.radius[i] > 1e-3) EXPECT_TRUE(test::bruteInside(loops, axis.nodes[i])) << axis.radius[i] << " at " << axis.nodes[i].x << " " << axis.nodes[i].y;
+      if (axis.radius[i] > 1e-3) {
+        EXPECT_TRUE(test::bruteInside(loops, axis.nodes[i])) << axis.radius[i] << " at " << axis.nodes[i].x << " " << axis.nodes[i].y;
+      }
       EXPECT_NEAR(axis.radius[i], test::bruteWallDistance(loops, axis.nodes[i]), 1e-6);  // corners: on the wall
     }
     // The largest inscribed circle against a dense grid search (brute force).

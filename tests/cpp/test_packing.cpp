@@ -157,16 +157,22 @@ TEST_P(PackingProperties, RandomPockets) {
       EXPECT_TRUE(test::bruteInside(loops, d.center));
       EXPECT_GE(test::bruteWallDistance(loops, d.center), d.radius + allowance - 1e-6);
       // Largest first.
-      if (i > 0) EXPECT_LE(d.radius, disks[i - 1].radius);
+      if (i > 0) {
+        EXPECT_LE(d.radius, disks[i - 1].radius);
+      }
       // A corner placement: touches at least two items (walls or circles).
       int items = wallContacts(loops, d.center, d.radius + allowance);
       for (size_t j = 0; j < i; ++j)
         if (std::fabs(dist(d.center, disks[j].center) - contactDistance(d, disks[j])) < 1e-6) ++items;
-      if (i > 0) EXPECT_GE(items, 2) << "disk " << i << " of trial " << trial;
+      if (i > 0) {
+        EXPECT_GE(items, 2) << "disk " << i << " of trial " << trial;
+      }
       // No overlap in the packing stage.
       for (size_t j = 0; j < i; ++j) {
         EXPECT_GE(dist(d.center, disks[j].center), contactDistance(d, disks[j]) - 1e-6);
-        if (ratio == 1.0) EXPECT_GE(dist(d.center, disks[j].center), d.radius + disks[j].radius - 1e-6);
+        if (ratio == 1.0) {
+          EXPECT_GE(dist(d.center, disks[j].center), d.radius + disks[j].radius - 1e-6);
+        }
       }
     }
     // Maximal: no circle of any size fits anywhere any more (dense random probe).

@@ -67,7 +67,9 @@ TEST(Selection, BranchAndBoundFindsTheEnumeratedOptimum) {
   EXPECT_NEAR(chosen.stats.estimatedMinutes, best, 1e-9 * best);
   // Pruned sets were pruned by a bound above the optimum.
   for (const ToolSetResult& r : sel.sets)
-    if (!r.evaluated) EXPECT_GE(r.minutes, best);
+    if (!r.evaluated) {
+      EXPECT_GE(r.minutes, best);
+    }
   // The plan uses exactly the chosen tools.
   std::vector<double> used;
   for (const ToolCount& t : chosen.stats.perTool) used.push_back(t.diameter);

@@ -9,7 +9,7 @@ import Part
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
                                 "resources", "examples"))
 from example_part import (add_plunge_rough, add_tool_controller, floor_face_name, freeform_part,  # noqa: E402,F401
-                          make_job, post_job)
+                          make_job)
 
 V = FreeCAD.Vector
 

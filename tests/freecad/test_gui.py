@@ -1,5 +1,5 @@
 """The op through FreeCAD's GUI under a virtual display (xvfb-run): the command
-sits in the Path toolbar and menu, creates the op from the selected face, the task
+sits in the CAM (1.0) or Path (0.20) workbench's toolbar and menu, creates the op from the selected face, the task
 panel is accepted, the op has paths, and a screenshot is kept."""
 import json
 import os
@@ -29,8 +29,12 @@ def test_gui_smoke():
         result = json.load(f)
     assert result["ok"], result.get("error") or result["steps"]
     assert not result.get("dialogs"), result["dialogs"]  # no unexpected modal dialog
+    assert result["report_found"] and not result["report"], result["report"]  # nothing went wrong in the report view
     assert result["chose"].startswith("TC: 20")  # FreeCAD's tool controller chooser was answered
-    assert result["toolbar"] == ["New Operations"] and result["menu"]
+    import FreeCAD
+    expected = ("CAMWorkbench", "&CAM") if int(FreeCAD.Version()[0]) >= 1 else ("PathWorkbench", "&Path")
+    assert result["workbench"] == expected[0]
+    assert result["toolbar"] == ["New Operations"] and result["menu"] == [expected[1]]
     assert result["base"] and result["base"][0].startswith("Face")
     ops = result["operations"]
     assert [d for _, d, _ in ops] == [20, 12, 6]

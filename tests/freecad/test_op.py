@@ -9,7 +9,7 @@ import pytest
 import parts
 from conftest import build_op
 from gcode import path_blocks, replay
-from freecad_plugin import PlungeRough
+from freecad_plugin import PlungeRough, compat
 
 
 def plunges_of(job):
@@ -185,7 +185,7 @@ def test_auto_select_tools(doc, tmp_path):
     comps = PlungeRough.companions(op)
     assert [c for c in comps if not c.Active], "the library holds sizes the selection does not take"
     assert_no_gouge(job.Model.Group[0].Shape, op.Base[0][1], plunges, op.StartDepth.Value, 0.5, 0.3, every=2)
-    text = parts.post_job(job, "linuxcnc", "--no-header --no-show-editor", tmp_path)
+    text = compat.post_job(job, "linuxcnc", "--no-header --no-show-editor")
     changed = [int(w[1:]) for line in text.splitlines() if line.startswith("M6") for w in line.split() if w[0] == "T"]
     number = {float(tc.Tool.Diameter): int(tc.ToolNumber) for tc in tcs}
     assert changed == [number[d] for d in chosen]  # one change per chosen plunger, largest first

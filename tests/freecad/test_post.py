@@ -8,7 +8,7 @@ import parts
 from conftest import build_op
 from freecad_plugin import PlungeRough
 from gcode import parse_gcode, replay
-from parts import post_job
+from freecad_plugin.compat import post_job
 
 
 def plan_plunges(op):
@@ -24,7 +24,7 @@ def assert_matches(posted, expected):
 @pytest.mark.parametrize("canned", [False, True])
 def test_linuxcnc(doc, tmp_path, canned):
     job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False, canned=canned, peck=3.0 if canned else 0.0)
-    text = post_job(job, "linuxcnc", "--no-header --no-show-editor", tmp_path)
+    text = post_job(job, "linuxcnc", "--no-header --no-show-editor")
     blocks = parse_gcode(text)
     plunges, low = replay(blocks, op.SafeHeight.Value)
     assert not low, "a rapid crosses below the safe height"
@@ -38,7 +38,7 @@ def test_linuxcnc(doc, tmp_path, canned):
 
 def test_grbl_translates_cycles(doc, tmp_path):
     job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False, canned=True)
-    text = post_job(job, "grbl", "--no-header --no-show-editor --translate_drill --tool-change", tmp_path)
+    text = post_job(job, "grbl", "--no-header --no-show-editor --translate_drill --tool-change")
     blocks = parse_gcode(text)  # comments removed: grbl_post keeps the cycle as one
     assert not any(c in ("G81", "G83") for codes, _ in blocks for c in codes)  # Grbl cannot run them
     plunges, low = replay(blocks, op.SafeHeight.Value)

@@ -1,19 +1,16 @@
-"""The job in FreeCAD's voxel simulator: each tool cuts its own plunges, and the
-removed volume is what the plan removes."""
-import json
+"""The job in FreeCAD's voxel simulator: each tool cuts its own plunges with the
+tool controller's own tool solid (as the simulator GUI does), and the removed
+material is what the plan removes."""
 import math
 
 import FreeCAD
 import Mesh
-import Part
 import Path
 import pytest
 
 import parts
 from conftest import build_op
-from freecad_plugin import PlungeRough
-
-PathSimulator = pytest.importorskip("PathSimulator")
+from freecad_plugin import PlungeRough, compat
 
 
 def expand(cmds):
@@ -49,11 +46,13 @@ def test_each_tool_cuts_its_own_plunges(doc, canned):
     job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False, diameters=(24, 14), canned=canned)
     stock = job.Stock.Shape
     resolution = 0.5
-    sim = PathSimulator.PathSim()
+    sim = compat.voxel_simulator()
     sim.BeginSimulation(stock, resolution)
     for o in job.Operations.Group:
-        d = float(o.ToolController.Tool.Diameter)
-        sim.SetToolShape(Part.makeCylinder(d / 2, 40), 0.05)  # this operation's own tool
+        tool = o.ToolController.Tool
+        # The solid FreeCAD built for the bit is as wide as the bit says.
+        assert abs(tool.Shape.BoundBox.XLength - float(tool.Diameter)) < 1e-6
+        sim.SetToolShape(tool.Shape, 0.05)  # this operation's own tool, as the GUI simulator takes it
         pos = FreeCAD.Placement(FreeCAD.Vector(0, 0, op.ClearanceHeight.Value), FreeCAD.Rotation())
         for c in expand(o.Path.Commands):
             pos = sim.ApplyCommand(pos, c)

@@ -15,10 +15,21 @@ def load(name):
         return json.load(f)
 
 
-def test_runs_under_debians_python():
-    # FreeCAD 0.20 on Debian 12 embeds /usr/lib/python3.11.
-    assert sys.version_info[:2] == (3, 11)
+def test_runs_under_debians_python(plunge):
+    """The module is built for Debian's python3, the interpreter FreeCAD embeds
+    (3.11 on Debian 12, 3.13 on Debian 13): same version as FreeCAD's own Python,
+    and an extension suffix this interpreter loads."""
+    import shutil
+    import subprocess
+    import sysconfig
     assert sys.executable.startswith("/usr/bin/python3")
+    assert plunge.__file__.endswith(sysconfig.get_config_var("EXT_SUFFIX"))
+    if shutil.which("freecadcmd"):
+        run = subprocess.run(["freecadcmd", "-c", "import sys; print('PY=%d.%d' % sys.version_info[:2]); "
+                              "sys.stdout.flush()"], capture_output=True, text=True, timeout=120, cwd="/tmp")
+        found = [l for l in run.stdout.replace("\r", "\n").splitlines() if l.startswith("PY=")]
+        assert found, run.stdout[-500:] + run.stderr[-500:]
+        assert found[0] == "PY=%d.%d" % sys.version_info[:2]
 
 
 def test_plan_contract(plunge):

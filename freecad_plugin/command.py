@@ -1,0 +1,99 @@
+"""The Plunge Rough command and its place in the CAM (1.0) / Path (0.20) workbench.
+
+InitGui.py runs this at FreeCAD's start, before any Path module may be imported,
+so this module imports only FreeCAD, FreeCADGui and Qt; the operation's GUI
+(freecad_plugin.PlungeRoughGui) is imported when the command first runs.
+
+- FreeCAD 1.0 has workbench manipulators: the command goes into the CAM menu
+  after Adaptive and at the end of the "New Operations" toolbar, by FreeCAD
+  itself, whenever the CAM workbench is built.
+- FreeCAD 0.20 has none: when the Path workbench is activated, an action running
+  the command is added to its menu and "New Operations" toolbar.
+"""
+import os
+
+import FreeCAD
+import FreeCADGui
+from PySide import QtCore, QtGui
+
+translate = FreeCAD.Qt.translate
+
+COMMAND = "PlungeRough"
+ADDON = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ICON = os.path.join(ADDON, "resources", "icons", "PlungeRough.svg")
+MENU_TEXT = QtCore.QT_TRANSLATE_NOOP("PlungeRough", "Plunge Rough")
+TOOL_TIP = QtCore.QT_TRANSLATE_NOOP(
+    "PlungeRough", "Rough the selected pocket floor by plunging: packed and covered plunges of several plunger "
+    "sizes, short tours, per-plunge depths")
+TOOLBAR = "New Operations"
+
+
+class CommandPlungeRough:
+    """The "Plunge Rough" command: a new operation on the selected floor face."""
+
+    def GetResources(self):
+        return {"Pixmap": ICON, "MenuText": translate("PlungeRough", MENU_TEXT),
+                "ToolTip": translate("PlungeRough", TOOL_TIP)}
+
+    def IsActive(self):
+        doc = FreeCAD.ActiveDocument
+        return doc is not None and any(o.Name.startswith("Job") for o in doc.Objects)
+
+    def Activated(self):
+        from freecad_plugin import PlungeRoughGui
+        return PlungeRoughGui.create_from_command()
+
+
+class Manipulator:
+    """FreeCAD 1.0's workbench manipulator: adds the command where CAM's own
+    operations are. Items naming CAM commands or toolbars only match in CAM."""
+
+    def modifyMenuBar(self):
+        return [{"insert": COMMAND, "menuItem": "CAM_Adaptive", "after": ""}]
+
+    def modifyToolBars(self):
+        return [{"append": COMMAND, "toolBar": TOOLBAR}]
+
+
+def _action():
+    """0.20: the one QAction running the command (a child of the main window)."""
+    mw = FreeCADGui.getMainWindow()
+    action = mw.findChild(QtGui.QAction, "PlungeRoughAction")
+    if action is None:
+        action = QtGui.QAction(QtGui.QIcon(ICON), translate("PlungeRough", MENU_TEXT), mw)
+        action.setObjectName("PlungeRoughAction")
+        action.setToolTip(translate("PlungeRough", TOOL_TIP))
+        action.triggered.connect(lambda: FreeCADGui.runCommand(COMMAND))
+    return action
+
+
+def _insert_into_path_workbench(name):
+    """0.20: FreeCAD rebuilds the Path menu and toolbars on every activation."""
+    if name != "PathWorkbench":
+        return
+    mw = FreeCADGui.getMainWindow()
+    action = _action()
+    for bar in mw.findChildren(QtGui.QToolBar):
+        if bar.objectName() == TOOLBAR or bar.windowTitle() == TOOLBAR:
+            if action not in bar.actions():
+                bar.addAction(action)
+    for menu_action in mw.menuBar().actions():
+        if menu_action.text().replace("&", "") == "Path" and menu_action.menu():
+            if action not in menu_action.menu().actions():
+                menu_action.menu().addAction(action)
+
+
+_installed = []
+
+
+def install():
+    """Registers the command and puts it into the workbench (once; InitGui.py)."""
+    if _installed:
+        return
+    FreeCADGui.addCommand(COMMAND, CommandPlungeRough())
+    if hasattr(FreeCADGui, "addWorkbenchManipulator"):
+        _installed.append(Manipulator())
+        FreeCADGui.addWorkbenchManipulator(_installed[0])
+    else:
+        _installed.append(_insert_into_path_workbench)
+        FreeCADGui.getMainWindow().workbenchActivated.connect(_insert_into_path_workbench)

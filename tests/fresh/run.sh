@@ -1,0 +1,106 @@
+#!/bin/sh
+# Proves the README on a pristine Debian: makes a minimal chroot of SUITE
+# (debootstrap --variant=minbase, from this machine's Debian mirror), clones this
+# checkout into it and runs the README's two commands there, exactly as the
+# README writes them, as root.
+#
+#   sh tests/fresh/run.sh bookworm          # Debian 12, FreeCAD 0.20.2: both commands
+#   sh tests/fresh/run.sh trixie test       # Debian 13, FreeCAD 1.0: the test command only
+#   sh tests/fresh/run.sh trixie main       # ... the main command only
+#
+# Only the debootstrap result is cached (PLUNGE_FRESH_CACHE, default
+# /var/cache/plungerough-fresh/SUITE-minbase.tar): it *is* the fresh machine.
+# Everything the README installs is installed again on every run, in a new
+# root extracted from that tarball (PLUNGE_FRESH_ROOT, default
+# /var/tmp/plungerough-fresh/SUITE). The clone is of the checkout's HEAD
+# (commit first); PLUNGE_FRESH_WORKTREE=1 copies the working tree instead.
+# Needs root on a Debian host (debootstrap is installed if missing).
+set -eu
+SUITE=${1:?usage: run.sh bookworm|trixie [all|main|test]}
+WHAT=${2:-all}
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+CACHE=${PLUNGE_FRESH_CACHE:-/var/cache/plungerough-fresh}
+BASE=${PLUNGE_FRESH_ROOT:-/var/tmp/plungerough-fresh}
+DIR=$BASE/$SUITE
+say() { echo "fresh[$SUITE]: $*"; }
+die() { echo "fresh[$SUITE]: $*" >&2; exit 1; }
+
+case $SUITE in bookworm|trixie) ;; *) die "unknown suite '$SUITE' (bookworm or trixie)";; esac
+case $WHAT in all|main|test) ;; *) die "unknown step '$WHAT' (all, main or test)";; esac
+[ "$(id -u)" -eq 0 ] || die "needs root (debootstrap, chroot, mounts)"
+
+# The README's two commands: the first ```sh block, one command per line.
+COMMANDS=$(awk '/^```sh$/ {on=1; next} on && /^```/ {exit} on && NF' "$ROOT/README.md")
+[ "$(printf '%s\n' "$COMMANDS" | wc -l)" -eq 2 ] || die "README.md does not start with exactly two commands"
+MAIN_CMD=$(printf '%s\n' "$COMMANDS" | sed -n 1p)
+TEST_CMD=$(printf '%s\n' "$COMMANDS" | sed -n 2p)
+
+# This machine's Debian mirror (deb822 sources first, then sources.list).
+mirror() {
+  m=$(grep -hs '^URIs:' /etc/apt/sources.list.d/*.sources | awk '{print $2}' | grep -v security | head -n1)
+  [ -n "$m" ] || m=$(grep -hs '^deb ' /etc/apt/sources.list | awk '{print $2}' | grep -v security | head -n1)
+  echo "${m:-http://deb.debian.org/debian}"
+}
+
+mounted_under() { awk -v d="$1" '$2 == d || index($2, d "/") == 1 {print $2}' /proc/mounts; }
+
+release() {
+  [ -d "$DIR" ] || return 0
+  # Processes left in the chroot (Xvfb, FreeCAD) hold its mounts.
+  for p in /proc/[0-9]*; do
+    [ "$(readlink "$p/root" 2>/dev/null)" = "$DIR" ] && kill -9 "${p#/proc/}" 2>/dev/null || true
+  done
+  for m in $(mounted_under "$DIR" | sort -r); do umount -l "$m" 2>/dev/null || true; done
+  [ -z "$(mounted_under "$DIR")" ] || die "could not unmount everything under $DIR"
+}
+
+command -v debootstrap >/dev/null || {
+  say "installing debootstrap on the host"
+  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq debootstrap >/dev/null
+}
+
+TARBALL=$CACHE/$SUITE-minbase.tar
+if [ ! -s "$TARBALL" ]; then
+  MIRROR=$(mirror)
+  say "debootstrap --variant=minbase $SUITE from $MIRROR (cached in $TARBALL)"
+  mkdir -p "$CACHE"
+  tmp=$CACHE/$SUITE.tmp
+  rm -rf --one-file-system "$tmp"
+  debootstrap --variant=minbase "$SUITE" "$tmp" "$MIRROR" >"$CACHE/$SUITE-debootstrap.log" 2>&1 \
+    || { tail -n 20 "$CACHE/$SUITE-debootstrap.log" >&2; die "debootstrap failed"; }
+  rm -rf "$tmp"/var/cache/apt/archives/*.deb
+  tar -C "$tmp" -cf "$TARBALL.part" . && mv "$TARBALL.part" "$TARBALL"
+  rm -rf --one-file-system "$tmp"
+fi
+
+release
+rm -rf --one-file-system "$DIR"
+mkdir -p "$DIR"
+trap release EXIT INT TERM
+tar -C "$DIR" -xf "$TARBALL"
+cp /etc/resolv.conf "$DIR/etc/resolv.conf"
+mount -t proc proc "$DIR/proc"
+mount -t sysfs sysfs "$DIR/sys"
+mount --rbind /dev "$DIR/dev"
+mount -t tmpfs tmpfs "$DIR/tmp"
+
+# The checkout, as a user clones it.
+if [ "${PLUNGE_FRESH_WORKTREE:-0}" = 1 ]; then
+  mkdir -p "$DIR/root/PlungeRough"
+  (cd "$ROOT" && git ls-files -co --exclude-standard -z | xargs -0 cp --parents -t "$DIR/root/PlungeRough")
+  say "copied the working tree of $ROOT"
+else
+  git clone --quiet "$ROOT" "$DIR/root/PlungeRough"
+  say "cloned $ROOT at $(git -C "$ROOT" rev-parse --short HEAD)"
+fi
+
+run_in_chroot() {
+  say "\$ $1"
+  env -i HOME=/root TERM=dumb LANG=C.UTF-8 PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
+    chroot "$DIR" /bin/sh -c "cd /root/PlungeRough && $1"
+}
+
+start=$(date +%s)
+[ "$WHAT" = test ] || run_in_chroot "$MAIN_CMD"
+[ "$WHAT" = main ] || run_in_chroot "$TEST_CMD"
+say "passed ($WHAT) in $(( $(date +%s) - start )) s"
