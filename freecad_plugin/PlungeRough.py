@@ -274,7 +274,7 @@ class ObjectPlungeRoughTool(PathOp.ObjectOp):
 
 
 def plan_of(obj):
-    """The last plan of a Plunge Rough operation (CONTRACTS.md section 2), or None."""
+    """The last plan of a Plunge Rough operation (docs/plan-format.md, "Output"), or None."""
     return json.loads(obj.PlanData)["plan"] if obj.PlanData else None
 
 

@@ -9,7 +9,7 @@ PACKAGES="cmake g++ make pkg-config
   libeigen3-dev libmuparser-dev libtbb-dev
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-visualization-dev
-  pybind11-dev python3-dev libgtest-dev python3-pytest python3-shapely
+  pybind11-dev python3-dev libgtest-dev python3-pytest python3-shapely python3-jsonschema
   freecad xvfb xauth libgl1-mesa-dri"
 
 missing=""
@@ -20,7 +20,7 @@ if [ -n "$missing" ]; then
   echo "setup: installing$missing"
   if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=""; fi
   $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
+  DEBIAN_FRONTEND=noninteractive DEBCONF_NOWARNINGS=yes $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
 fi
 
 cmake -S "$ROOT" -B "$ROOT/build" -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=/usr/bin/python3 \

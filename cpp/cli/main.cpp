@@ -1,4 +1,4 @@
-// plunge-rough: the command-line face of the planner (../shared/CONTRACTS.md section 4).
+// plunge-rough: the command-line face of the planner (docs/plan-format.md).
 // Exit 0 on success; on bad input exit 2 with one line on stderr.
 #include <CLI/CLI.hpp>
 #include <fstream>
@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   std::string input, output = "-", svg, gcode;
   CLI::App* planCmd = app.add_subcommand("plan", "Plan the plunges of a pocket described in a JSON file");
-  planCmd->add_option("INPUT", input, "plan input (JSON, see CONTRACTS.md section 1)")->required();
+  planCmd->add_option("INPUT", input, "plan input (JSON, see docs/plan-format.md)")->required();
   planCmd->add_option("-o,--output", output, "plan output JSON (default: standard output)");
   planCmd->add_option("--svg", svg, "write a picture of the plan");
   planCmd->add_option("--gcode", gcode, "write RS-274 G-code (explicit moves)");
@@ -55,9 +55,10 @@ int main(int argc, char** argv) {
     const plunge::Plan plan = plunge::plan(in);
     writeFile(output, plunge::planToJson(plan));
     for (const std::string& w : plan.warnings) std::cerr << "warning: " << w << "\n";
-    // The reasoning of an automatic tool choice, for the user (JSON has it too).
-    if (plan.selection && !output.empty())
-      for (const std::string& line : plan.selection->reasoning) std::cout << line << "\n";
+    // The reasoning of an automatic tool choice, for the user (the JSON has it
+    // too); on stderr, so that the plan on stdout stays valid JSON.
+    if (plan.selection)
+      for (const std::string& line : plan.selection->reasoning) std::cerr << line << "\n";
     if (!svg.empty()) writeFile(svg, plunge::planToSvg(in, plan));
     if (!gcode.empty()) writeFile(gcode, plunge::planToGcode(in, plan));
   } catch (const plunge::Error& e) {

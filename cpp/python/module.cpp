@@ -1,4 +1,4 @@
-// The Python module `plunge` (../shared/CONTRACTS.md section 3): conversions and
+// The Python module `plunge` (README "Using it", docs/plan-format.md): conversions and
 // bindings only. plunge::Error becomes ValueError; long calls release the GIL.
 #include <pybind11/functional.h>
 #include <pybind11/pybind11.h>
@@ -129,7 +129,7 @@ PYBIND11_MODULE(plunge, m) {
   m.doc() = "Plunge roughing planner: circle packing, gap covering, sequencing and depths";
   py::register_exception<plunge::Error>(m, "PlanError", PyExc_ValueError);
   m.def("plan", &planDict, py::arg("input"), py::arg("svg") = false,
-        "Plan a pocket: input and output dicts as in CONTRACTS.md sections 1 and 2; with svg=True "
+        "Plan a pocket: input and output dicts as in docs/plan-format.md; with svg=True "
         "the result also holds \"svg\", the plan's picture.");
   py::class_<plunge::OptimizeResult>(m, "Result", "Global optimum found by plunge.optimize")
       .def_property_readonly("x", [](const plunge::OptimizeResult& r) { return asTuple(r.x); })

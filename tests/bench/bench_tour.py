@@ -15,7 +15,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 sys.path.insert(0, os.path.join(ROOT, "build", "cpp"))
 import plunge  # noqa: E402
 
-DATA = os.path.join(ROOT, "..", "shared", "data", "tsp")
+DATA = os.path.join(ROOT, "tests", "data", "tsp")
 
 
 def load(name):

@@ -14,6 +14,8 @@
 # root extracted from that tarball (PLUNGE_FRESH_ROOT, default
 # /var/tmp/plungerough-fresh/SUITE). The clone is of the checkout's HEAD
 # (commit first); PLUNGE_FRESH_WORKTREE=1 copies the working tree instead.
+# The environment inside is a clean root login's, plus PLUNGE_WERROR (CI's
+# -Werror, see resources/setup.sh).
 # Needs root on a Debian host (debootstrap is installed if missing).
 set -eu
 SUITE=${1:?usage: run.sh bookworm|trixie [all|main|test]}
@@ -97,6 +99,7 @@ fi
 run_in_chroot() {
   say "\$ $1"
   env -i HOME=/root TERM=dumb LANG=C.UTF-8 PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
+    PLUNGE_WERROR="${PLUNGE_WERROR:-OFF}" \
     chroot "$DIR" /bin/sh -c "cd /root/PlungeRough && $1"
 }
 

@@ -34,7 +34,8 @@ def test_auto_selection_cli_prints_its_reasoning(cli, tmp_path, name):
     res = subprocess.run([cli, "plan", str(src), "-o", str(out), "--gcode", str(tmp_path / "p.nc")],
                          capture_output=True, text=True, timeout=600)
     assert res.returncode == 0, res.stderr
-    assert "largest inscribed circle" in res.stdout and "chosen:" in res.stdout
+    assert "largest inscribed circle" in res.stderr and "chosen:" in res.stderr
+    assert res.stdout == ""
     plan = json.loads(out.read_text())
     sel = plan["tool_selection"]
     chosen = sel["chosen"]
@@ -66,6 +67,17 @@ def test_neck_shape_gets_a_neck_tool(plunge):
     assert neck_tool in sel["candidates"]
     assert len(sel["subregions"]) >= 2
     assert sorted(sel["subregion_order"]) == list(range(len(sel["subregions"])))
+
+
+def test_auto_selection_to_stdout_is_valid_json(cli, tmp_path):
+    """The default output is standard output: the plan alone, the reasoning on stderr."""
+    data = auto(load("neck"))
+    src = tmp_path / "in.json"
+    src.write_text(json.dumps(data))
+    res = subprocess.run([cli, "plan", str(src)], capture_output=True, text=True, timeout=600)
+    assert res.returncode == 0, res.stderr
+    plan = json.loads(res.stdout)
+    assert plan["tool_selection"]["chosen"] and "chosen:" in res.stderr
 
 
 def test_auto_bad_input(plunge):

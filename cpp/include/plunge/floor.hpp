@@ -1,5 +1,5 @@
-// The pocket's floor as a height field z = f(x, y) (../shared/CONTRACTS.md
-// section 1): flat, an expression (muParser), or OpenCASCADE BREP faces.
+// The pocket's floor as a height field z = f(x, y) (docs/plan-format.md,
+// "floor"): flat, an expression (muParser), or OpenCASCADE BREP faces.
 // Not thread-safe: evaluation caches state.
 #pragma once
 #include <memory>

@@ -1,4 +1,4 @@
-// Plan input and output (../shared/CONTRACTS.md sections 1, 2 and 4): JSON text,
+// Plan input and output (docs/plan-format.md): JSON text,
 // an SVG picture of the plan, and plain RS-274 G-code.
 #pragma once
 #include <string>

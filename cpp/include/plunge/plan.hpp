@@ -1,5 +1,5 @@
-// The plan pipeline: input (../shared/CONTRACTS.md section 1) to plunges and
-// statistics (section 2): region, packing, covering, sequencing, depths.
+// The plan pipeline: input to plunges and statistics (docs/plan-format.md):
+// region, packing, covering, sequencing, depths.
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -80,7 +80,7 @@ struct PlanStats {
   double travelLength = 0.0;
   double planningSeconds = 0.0;
   // Reference: plunges of the largest tool a hexagonal covering of the
-  // accessible area would need (area / (2.598 r^2)), see shared notes.
+  // accessible area would need (area / (2.598 r^2)), a reference count, not a bound.
   double hexReferenceCount = 0.0;
   double estimatedMinutes = 0.0;  // the time model's estimate (selection.hpp)
 };
