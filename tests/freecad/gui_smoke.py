@@ -209,6 +209,7 @@ def simulate(doc):
     else:  # the play button comes back when the simulation has ended
         play = mw.findChild(QtGui.QToolButton, "toolButtonPlay")
         wait(300, lambda: play.isEnabled())
+        result["stock_volume"] = doc.getObject("Job").Stock.Shape.Volume
         cut = doc.getObject("CutMaterial")
         result["simulated_volume"] = cut.Mesh.Volume if cut is not None else None
         for o in doc.Objects:  # the cut material alone, from above

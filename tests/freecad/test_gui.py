@@ -44,3 +44,11 @@ def test_gui_smoke():
     assert result["auto_checkbox"] is False
     assert "coverage" in result["summary"]
     assert os.path.getsize(os.path.join(out, "plunge_rough_gui.png")) > 10000
+    # The version's own simulator ran the job: 1.0's OpenGL window opened, or
+    # 0.20's voxel simulation removed material.
+    assert result["simulator"] == ("CAM_SimulatorGL" if expected[0] == "CAMWorkbench" else "Path_Simulator")
+    if result["simulator"] == "CAM_SimulatorGL":
+        assert result["simulator_windows"] == 1
+    else:
+        assert 0 < result["simulated_volume"] < 0.95 * result["stock_volume"]
+    assert os.path.getsize(os.path.join(out, "plunge_rough_simulation.png")) > 10000
