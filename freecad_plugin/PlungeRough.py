@@ -18,7 +18,7 @@ import FreeCAD
 from PySide.QtCore import QT_TRANSLATE_NOOP
 
 from freecad_plugin import generator, geometry
-from freecad_plugin.compat import PathFeedRate, PathLog, PathOp, PathUtils
+from freecad_plugin.compat import PathFeedRate, PathJob, PathOp, PathUtils
 
 __title__ = "Plunge Rough operation"
 __doc__ = "Plunge roughing of pockets: circle packing, gap covering, sequencing, depths."
@@ -47,6 +47,27 @@ def _report(obj, message):
     obj.Summary = message
 
 
+PLUNGER_SHAPES = ("endmill", "ballend", "bullnose")
+
+
+def is_plunger(tc):
+    """A tool controller that can plunge: a flat, ball or bull-nose bit (an end
+    mill's shape; not a drill, chamfer, V-bit, probe, saw or thread mill) and a
+    vertical feed to plunge with. The Job's default tool controller has none."""
+    bit = getattr(tc, "Tool", None)
+    if bit is None or not hasattr(bit, "Diameter"):
+        return False
+    shape = os.path.splitext(os.path.basename(str(getattr(bit, "BitShape", "endmill"))))[0].lower()
+    feed = tc.VertFeed.getValueAs("mm/min").Value if hasattr(tc, "VertFeed") else 0.0
+    return shape in PLUNGER_SHAPES and feed > 0
+
+
+def job_plungers(job):
+    """The plunger tool controllers of a Job, largest first."""
+    tcs = [tc for tc in (job.Tools.Group if job is not None else []) if is_plunger(tc)]
+    return sorted(tcs, key=lambda tc: -float(tc.Tool.Diameter))
+
+
 def _tool_controllers(obj):
     """The plunger tool controllers, largest first (the op's own one if none is listed)."""
     tcs = []
@@ -60,6 +81,10 @@ def _add(obj, kind, name, tip, default=None, mode=None):
     if not hasattr(obj, name):
         obj.addProperty(kind, name, "Plunge Rough", QT_TRANSLATE_NOOP("App::Property", tip))
         if default is not None:
+            # Lengths as quantities: the setup sheet's op prototypes (the Job
+            # panel's "Op Defaults") keep the value as given and expect units.
+            if kind in ("App::PropertyDistance", "App::PropertyLength"):
+                default = FreeCAD.Units.Quantity(default, FreeCAD.Units.Length)
             setattr(obj, name, default)
     if mode is not None:
         obj.setEditorMode(name, mode)
@@ -67,6 +92,23 @@ def _add(obj, kind, name, tip, default=None, mode=None):
 
 class ObjectPlungeRough(PathOp.ObjectOp):
     """Proxy of the Plunge Rough operation."""
+
+    def __init__(self, obj, name, parentJob=None):
+        # While FreeCAD picks the new operation's tool controller, only the
+        # largest plunger is offered: it is the operation's own, so FreeCAD
+        # need not ask (opSetDefaultValues then ticks every plunger).
+        self._creating = True
+        try:
+            super().__init__(obj, name, parentJob)
+        finally:
+            self._creating = False
+
+    def isToolSupported(self, obj, tool):
+        job = PathUtils.findParentJob(obj) or getattr(self, "job", None)
+        plungers = job_plungers(job)
+        if getattr(self, "_creating", False):
+            return bool(plungers) and plungers[0].Tool == tool
+        return any(tc.Tool == tool for tc in plungers)
 
     def opFeatures(self, obj):
         return (PathOp.FeatureTool | PathOp.FeatureDepths | PathOp.FeatureHeights | PathOp.FeatureBaseFaces
@@ -101,16 +143,37 @@ class ObjectPlungeRough(PathOp.ObjectOp):
              "", mode=2)
 
     def opOnDocumentRestored(self, obj):
-        # Files from older versions lack newer properties.
+        # Files from older versions lack newer properties, and their companions
+        # have labels with parentheses (nested comments in G-code).
         self._addProperties(obj)
+        for comp in companions(obj):
+            label = companion_label(obj, comp.ToolController)
+            if comp.ToolController is not None and comp.Label != label:
+                comp.Label = label
 
     def opSetDefaultValues(self, obj, job):
-        if obj.ToolController and not obj.ToolControllers:
+        # Every plunger of the Job, largest as the operation's own; whatever
+        # FreeCAD chose (the previous operation's tool controller) otherwise.
+        plungers = job_plungers(job)
+        if plungers:
+            obj.ToolController = plungers[0]
+            obj.ToolControllers = plungers
+        elif obj.ToolController and not obj.ToolControllers:
             obj.ToolControllers = [obj.ToolController]
+        syncCompanions(obj)  # the proxy is not attached yet: opOnChanged does not run
 
     def opOnChanged(self, obj, prop):
-        if prop == "ToolControllers" and "Restore" not in obj.State and hasattr(obj, "PlanData"):
+        # Not while a file loads or an undo/redo replays the document: those
+        # restore the companions themselves.
+        settled = "Restore" not in obj.State and not obj.Document.Transacting
+        if prop == "ToolControllers" and settled and hasattr(obj, "PlanData"):
             syncCompanions(obj)
+        if prop == "Active" and settled:
+            for comp in companions(obj):  # the plan's other tools follow the operation
+                if not obj.Active and comp.Active:
+                    comp.Active = False
+                elif obj.Active and not comp.Active and not obj.AutoSelectTools:
+                    comp.Active = True
         if prop == "AutoSelectTools" and "Restore" not in obj.State and not obj.AutoSelectTools:
             tcs = _tool_controllers(obj)
             if tcs and obj.ToolController != tcs[0]:  # the largest plunger again
@@ -142,6 +205,15 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         diameters = [float(tc.Tool.Diameter) for tc in tcs]
         if len(set(diameters)) != len(diameters):
             _report(obj, translate("PlungeRough", "two plunger tool controllers have the same diameter"))
+            return
+        # Each further plunger cuts through its companion operation: without it
+        # its plunges would silently be missing from the simulation and G-code.
+        have = {comp.ToolController for comp in companions(obj)}
+        missing = [tc for tc in tcs[1:] if tc not in have]
+        if missing:
+            _report(obj, translate("PlungeRough", "the operation of plunger %s was deleted, so its plunges would not "
+                                   "be cut: untick it in the plunger list (or tick it again)")
+                    % ", ".join(tc.Label for tc in missing))
             return
         try:
             boundary, islands, deviation = geometry.footprint(faces, obj.ChordTolerance.Value)
@@ -183,8 +255,12 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         obj.PlanData = json.dumps({"input": data, "plan": plan})
         with open(os.path.join(workdir, "plan.svg"), "w") as f:
             f.write(picture)
-        obj.Summary = summary(plan)
-        for warning in plan.get("warnings", []):
+        warnings = list(plan.get("warnings", []))
+        post_warning = canned_cycle_warning(obj)
+        if post_warning:
+            warnings.append(post_warning)
+        obj.Summary = summary(dict(plan, warnings=warnings))
+        for warning in warnings:
             FreeCAD.Console.PrintWarning("%s: %s\n" % (obj.Label, warning))
         # Automatic choice: this operation cuts with the largest plunger the plan
         # uses; the companions of unused plungers, and the one of that plunger,
@@ -202,6 +278,20 @@ class ObjectPlungeRough(PathOp.ObjectOp):
                 comp.Active = active
         self.commandlist.extend(toolCommands(obj, plunges_of_tool(plan, own_tc)))
         PathFeedRate.setFeedRate(self.commandlist, own_tc)
+
+
+def canned_cycle_warning(obj):
+    """Grbl has no canned cycles; FreeCAD's grbl post passes G81/G83 through
+    unless it is told to translate them."""
+    job = PathUtils.findParentJob(obj)
+    if not obj.UseCannedCycle or job is None:
+        return None
+    post = str(getattr(job, "PostProcessor", "") or "").lower()
+    args = str(getattr(job, "PostProcessorArgs", "") or "")
+    if "grbl" in post and "--translate_drill" not in args:
+        return translate("PlungeRough", "the Job posts with grbl, which has no canned cycles: add --translate_drill "
+                         "to the Job's post processor arguments, or turn canned cycles off")
+    return None
 
 
 def planner():
@@ -263,7 +353,7 @@ class ObjectPlungeRoughTool(PathOp.ObjectOp):
 
     def opExecute(self, obj):
         main = obj.PlanOperation
-        plan = plan_of(main) if main is not None else None
+        plan = plan_of(main) if main is not None and main.Active else None
         if plan is None:
             return
         plunges = plunges_of_tool(plan, obj.ToolController)
@@ -288,6 +378,25 @@ def companions(obj):
     return [o for o in obj.InList if getattr(o, "PlanOperation", None) == obj]
 
 
+def companion_label(obj, tc):
+    """"PlungeRough T3 12 mm": no parentheses, which the post would nest in comments."""
+    if tc is None:
+        return obj.Label + " plunger"
+    return "%s T%d %g mm" % (obj.Label, tc.ToolNumber, float(tc.Tool.Diameter))
+
+
+def removeOrphans(doc):
+    """Removes companion operations whose Plunge Rough operation is gone or that
+    are in no Job (left by a cancelled task panel)."""
+    for o in list(doc.Objects):
+        if not isinstance(getattr(o, "Proxy", None), ObjectPlungeRoughTool):
+            continue
+        main = getattr(o, "PlanOperation", None)
+        if main is None or main.Document is not doc or o not in companions(main) or \
+                PathUtils.findParentJob(o) is None:
+            doc.removeObject(o.Name)
+
+
 def syncCompanions(obj):
     """One companion per plunger besides the largest, ordered after obj by size."""
     job = PathUtils.findParentJob(obj)
@@ -304,10 +413,16 @@ def syncCompanions(obj):
         comp = existing.pop(tc, None)
         if comp is None:
             comp = obj.Document.addObject("Path::FeaturePython", obj.Name + "_T")
+            # Its settings are the Plunge Rough operation's, not the setup sheet's
+            # (which knows nothing of companions and would say so in the log).
+            comp.addProperty("App::PropertyBool", "DoNotSetDefaultValues", "Path")
+            comp.DoNotSetDefaultValues = True
+            comp.setEditorMode("DoNotSetDefaultValues", 2)
             comp.Proxy = ObjectPlungeRoughTool(comp, "PlungeRoughTool", job)
+            comp.Active = True
             comp.PlanOperation = obj
             comp.ToolController = tc
-        comp.Label = "%s T%d (%g mm)" % (obj.Label, tc.ToolNumber, float(tc.Tool.Diameter))
+        comp.Label = companion_label(obj, tc)
         wanted.append(comp)
     for stale in existing.values():
         obj.Document.removeObject(stale.Name)
@@ -319,10 +434,17 @@ def syncCompanions(obj):
 
 
 def register():
-    """Lets job setup sheets carry defaults for the operation (Init.py calls this)."""
+    """Lets job setup sheets carry defaults for the operation. The companions are
+    internal: they have no defaults of their own and are not offered there."""
     from freecad_plugin.compat import PathSetupSheet
     PathSetupSheet.RegisterOperation("PlungeRough", Create, SetupProperties)
-    PathSetupSheet.RegisterOperation("PlungeRoughTool", CreateCompanion, lambda: [])
+
+
+def _active_job():
+    """The Job a new operation goes into when none is given: the only one."""
+    doc = FreeCAD.ActiveDocument
+    jobs = [o for o in (doc.Objects if doc else []) if isinstance(getattr(o, "Proxy", None), PathJob.ObjectJob)]
+    return jobs[0] if len(jobs) == 1 else None
 
 
 def CreateCompanion(name, obj=None, parentJob=None):
@@ -336,6 +458,11 @@ def CreateCompanion(name, obj=None, parentJob=None):
 def Create(name, obj=None, parentJob=None):
     """Create(name) ... a Plunge Rough operation, as FreeCAD's own operations do."""
     if obj is None:
+        job = parentJob or _active_job()
+        if job is not None and not job_plungers(job):
+            raise ValueError(translate(
+                "PlungeRough", "the Job has no plunger: add a tool controller with a flat, ball or bull-nose bit and "
+                "a vertical feed (the plunge feed)"))
         obj = FreeCAD.ActiveDocument.addObject("Path::FeaturePython", name)
     obj.Proxy = ObjectPlungeRough(obj, name, parentJob)
     return obj

@@ -40,8 +40,11 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
         return translate("PlungeRough", "Plunge Rough")
 
     def _jobToolControllers(self):
+        """The plungers offered in the list (drills, V-bits, tool controllers
+        without a vertical feed are not), plus any the operation already uses."""
         job = PathUtils.findParentJob(self.obj)
-        return list(job.Tools.Group) if job else []
+        offered = PlungeRough.job_plungers(job)
+        return offered + [tc for tc in self.obj.ToolControllers if tc not in offered]
 
     def getFields(self, obj):
         """UI to object."""
@@ -108,8 +111,27 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
 class ViewProvider(PathOpGui.ViewProvider):
     """The operation's view provider with the addon's icon and a face selection gate."""
 
+    def attach(self, vobj):
+        super().attach(vobj)
+        # FreeCAD's base class looks the icon up as ":/icons/<pixmap>.svg" in its
+        # own resources; this addon's icon is a file.
+        self.OpIcon = ICON
+
     def getIcon(self):
         return ICON
+
+    def setupTaskPanel(self, panel):
+        super().setupTaskPanel(panel)
+        reject = panel.reject
+
+        def rejectAndTidy(resetEdit=True):
+            # Cancel rolls the operation back; companions made while the panel
+            # was open (ticked plungers) or of a removed new operation go too.
+            result = reject(resetEdit)
+            PlungeRough.removeOrphans(FreeCAD.ActiveDocument)
+            return result
+
+        panel.reject = rejectAndTidy
 
     def getSelectionFactory(self):
         return PathSelection.pocketselect
@@ -138,6 +160,21 @@ class CompanionViewProvider:
         if main is not None and main.ViewObject:
             main.ViewObject.Document.setEdit(main.ViewObject, 0)
         return False
+
+    def canDelete(self, obj):
+        # The Plunge Rough operation may go: it takes its companions with it.
+        return obj == self.Object.PlanOperation
+
+    def onDelete(self, vobj, subelements=None):
+        """Deleting a companion drops its plunger from the plan: the operation
+        replans with the others, so no plunge is silently lost."""
+        comp = vobj.Object
+        doc, name, main = comp.Document, comp.Name, comp.PlanOperation
+        if main is not None and comp.ToolController in main.ToolControllers:
+            main.ToolControllers = [tc for tc in main.ToolControllers if tc != comp.ToolController]
+            main.touch()
+            return doc.getObject(name) is not None  # False: the operation removed it already
+        return True
 
     def __getstate__(self):
         return None

@@ -7,14 +7,14 @@ so this module imports only FreeCAD, FreeCADGui and Qt; the operation's GUI
 - FreeCAD 1.0 has workbench manipulators: the command goes into the CAM menu
   after Adaptive and at the end of the "New Operations" toolbar, by FreeCAD
   itself, whenever the CAM workbench is built.
-- FreeCAD 0.20 has none: when the Path workbench is activated, an action running
-  the command is added to its menu and "New Operations" toolbar.
+- FreeCAD 0.20 has none: the command is added to the Path workbench's "New
+  Operations" toolbar definition and its action to the Path menu after Adaptive.
 """
 import os
 
 import FreeCAD
 import FreeCADGui
-from PySide import QtCore, QtGui
+from PySide import QtCore
 
 translate = FreeCAD.Qt.translate
 
@@ -55,34 +55,35 @@ class Manipulator:
         return [{"append": COMMAND, "toolBar": TOOLBAR}]
 
 
-def _action():
-    """0.20: the one QAction running the command (a child of the main window)."""
-    mw = FreeCADGui.getMainWindow()
-    action = mw.findChild(QtGui.QAction, "PlungeRoughAction")
-    if action is None:
-        action = QtGui.QAction(QtGui.QIcon(ICON), translate("PlungeRough", MENU_TEXT), mw)
-        action.setObjectName("PlungeRoughAction")
-        action.setToolTip(translate("PlungeRough", TOOL_TIP))
-        action.triggered.connect(lambda: FreeCADGui.runCommand(COMMAND))
-    return action
-
-
 def _insert_into_path_workbench(name):
-    """0.20: FreeCAD rebuilds the Path menu and toolbars on every activation."""
+    """0.20: the command joins the Path workbench's "New Operations" toolbar
+    definition once (FreeCAD then makes its action, greyed out while it is not
+    active), and its action is put after Adaptive in the Path menu whenever
+    FreeCAD rebuilds that menu (every activation)."""
     if name != "PathWorkbench":
         return
-    mw = FreeCADGui.getMainWindow()
-    action = _action()
-    for bar in mw.findChildren(QtGui.QToolBar):
-        if bar.objectName() == TOOLBAR or bar.windowTitle() == TOOLBAR:
-            if action not in bar.actions():
-                bar.addAction(action)
-    for menu_action in mw.menuBar().actions():
-        if menu_action.text().replace("&", "") == "Path" and menu_action.menu():
-            if action not in menu_action.menu().actions():
-                menu_action.menu().addAction(action)
+    if not _toolbar_added:
+        _toolbar_added.append(True)
+        workbench = FreeCADGui.getWorkbench(name)
+        workbench.appendToolbar(TOOLBAR, [COMMAND])
+        workbench.reloadActive()
+    actions = FreeCADGui.Command.get(COMMAND).getAction()
+    if not actions:
+        return
+    action = actions[0]
+    for menu_action in FreeCADGui.getMainWindow().menuBar().actions():
+        menu = menu_action.menu()
+        if menu is None or menu_action.text().replace("&", "") != "Path" or action in menu.actions():
+            continue
+        items = menu.actions()
+        after = [i for i, a in enumerate(items) if a.objectName() == "Path_Adaptive"]
+        if after and after[0] + 1 < len(items):
+            menu.insertAction(items[after[0] + 1], action)
+        else:
+            menu.addAction(action)
 
 
+_toolbar_added = []
 _installed = []
 
 

@@ -192,10 +192,14 @@ Plan plan(PlanInput in) {
   out.stats.coveredArea = cover.coveredArea;
   out.stats.coverage = cover.accessibleArea > 0 ? cover.coveredArea / cover.accessibleArea : 0.0;
   out.stats.hexReferenceCount = cover.accessibleArea / (1.5 * std::sqrt(3.0) * radii.front() * radii.front());
-  if (in.strategy == "packing" && out.stats.coverage < in.minCoverage - 1e-3) {
+  // Any strategy short of the coverage asked for says so: the grid's fixed
+  // spacing usually is. Worded for users of every front end (no JSON key names).
+  if (out.stats.coverage < in.minCoverage - 1e-3) {
     std::ostringstream w;
-    w << std::fixed << std::setprecision(2) << "coverage " << 100 * out.stats.coverage
-      << " % is below min_coverage " << 100 * in.minCoverage << " %: material stays along the walls";
+    w << std::fixed << std::setprecision(2) << "the plunges clear " << 100 * out.stats.coverage
+      << " % of the reachable floor, less than the " << 100 * in.minCoverage
+      << " % asked for: material stays along the walls";
+    if (in.strategy == "grid") w << " (a grid's fixed spacing cannot reach it)";
     out.warnings.push_back(w.str());
   }
   out.stats.estimatedMinutes = estimateMinutes(out, in.tools, in.safeZ, in.timeModel);

@@ -113,17 +113,15 @@ def add_tool_controller(job, diameter, number, bit_folder=None):
 
 
 def add_plunge_rough(job, face, diameters=(20, 12, 6), bit_folder=None, **properties):
-    """A Plunge Rough operation on the job's model face with one plunger tool
-    controller per diameter (tool numbers from 2), recomputed. Tool controllers are
-    added after the op: FreeCAD 0.20 asks the user to choose one when there are
-    several, which fails headless."""
+    """Plunger tool controllers (tool numbers from 2), then a Plunge Rough
+    operation on the job's model face, as a user adds them; recomputed. The new
+    operation ticks every plunger of the Job, the largest as its own."""
     doc = job.Document
-    op = PlungeRough.Create("PlungeRough", parentJob=job)
     tcs = [add_tool_controller(job, d, i + 2, bit_folder) for i, d in enumerate(diameters)]
+    op = PlungeRough.Create("PlungeRough", parentJob=job)
     clone = job.Model.Group[0]
     op.Base = [(clone, [face])]
     for name, value in properties.items():
         setattr(op, name, value)
-    op.ToolControllers = tcs
     doc.recompute()
     return op, tcs

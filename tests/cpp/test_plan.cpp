@@ -148,6 +148,14 @@ TEST(Plan, CoverageShortfallIsAWarning) {
   in.minCoverage = 1.0;  // wall cusps always remain
   const Plan short_ = plan(in);
   ASSERT_EQ(short_.warnings.size(), 1u);
-  EXPECT_NE(short_.warnings[0].find("below min_coverage"), std::string::npos);
+  EXPECT_NE(short_.warnings[0].find("less than the 100.00 % asked for"), std::string::npos);
+  EXPECT_EQ(short_.warnings[0].find("min_coverage"), std::string::npos);  // no internal key names
   EXPECT_NE(planToJson(short_).find("\"warnings\""), std::string::npos);
+  // The grid baseline short of the target warns the same way.
+  in.minCoverage = 0.996;
+  in.strategy = "grid";
+  const Plan grid = plan(in);
+  ASSERT_LT(grid.stats.coverage, in.minCoverage);
+  ASSERT_EQ(grid.warnings.size(), 1u);
+  EXPECT_NE(grid.warnings[0].find("grid"), std::string::npos);
 }

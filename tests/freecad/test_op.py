@@ -158,7 +158,7 @@ def test_saved_and_restored(doc, tmp_path):
         again.recompute()
         assert PlungeRough.plan_of(op2)["stats"]["plunge_count"] == count
         assert [o.Label for o in again.getObject("Job").Operations.Group][1:] == \
-            ["PlungeRough T3 (12 mm)", "PlungeRough T4 (6 mm)"]
+            ["PlungeRough T3 12 mm", "PlungeRough T4 6 mm"]
     finally:
         FreeCAD.closeDocument(again.Name)
 
