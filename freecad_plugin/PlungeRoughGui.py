@@ -189,10 +189,21 @@ def _adoptCompanions(obj):
             CompanionViewProvider(comp.ViewObject)
 
 
+def resources():
+    return PathOpGui.CommandResources(COMMAND, PlungeRough.Create, TaskPanelOpPage, ICON, MENU_TEXT, None, TOOL_TIP)
+
+
 def create_from_command():
     """What the Plunge Rough command runs: a new operation on the selection."""
-    res = PathOpGui.CommandResources(COMMAND, PlungeRough.Create, TaskPanelOpPage, ICON, MENU_TEXT, None, TOOL_TIP)
-    return create(res)
+    return create(resources())
+
+
+def attach_view_providers(obj):
+    """The operation's and its companions' view providers, as the command gives
+    them (for operations made by a script in the GUI)."""
+    obj.ViewObject.Proxy = ViewProvider(obj.ViewObject, resources())
+    obj.ViewObject.Proxy.deleteOnReject = False
+    _adoptCompanions(obj)
 
 
 def create(res):

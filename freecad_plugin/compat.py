@@ -94,6 +94,14 @@ def simulator_command():
     return None
 
 
+def voxel_simulator_command():
+    """The GUI command of the voxel simulator's panel: Path_Simulator (0.20),
+    CAM_Simulator (1.0, the legacy simulator)."""
+    import FreeCADGui
+    commands = FreeCADGui.listCommands()
+    return next((n for n in ("CAM_Simulator", "Path_Simulator") if n in commands), None)
+
+
 def post_module(name):
     """A post processor script module by its short name ("linuxcnc", "grbl")."""
     return _first("Path.Post.scripts.%s_post" % name, "PathScripts.post.%s_post" % name)

@@ -1,44 +1,54 @@
-"""The main job, headless in FreeCAD (freecadcmd), with the installed addon:
-the example part (free-form wall, free-form island, B-spline floor), a Job with
-three plunger tool controllers, Plunge Rough on the floor face, recompute, post
-with the linuxcnc post. Writes into $PLUNGE_OUT (default ./out):
-  plunge_example.FCStd   the document (open it in FreeCAD to simulate),
-  plunge_rough.ngc       the posted G-code,
-  plunge_rough.svg       the plan picture,
-  summary.txt            plunges per tool, coverage, travel, estimated time.
-Run by resources/examples/run_example.sh."""
+"""The main job inside FreeCAD's GUI (run by resources/examples/run_example.sh
+under a virtual display), with the installed addon, made as a user makes it:
+the example part (free-form wall, free-form island, B-spline floor), a Job from
+the CAM (1.0) / Path (0.20) workbench's Job command, three plunger tool
+controllers from their own tool bit files, Plunge Rough on the floor face,
+recompute, post with the linuxcnc post. Writes into $PLUNGE_OUT (default ./out):
+  plunge_example.FCStd   the document, with its view providers: open it in
+                         FreeCAD, simulate, edit, post;
+  plunge_rough.ngc       the posted G-code;
+  plunge_rough.svg       the plan picture;
+  summary.txt            plunges per tool, coverage, travel, estimated time;
+  bits/                  the tool bit files.
+A failure is written to demo_error.txt (the GUI has no terminal)."""
 import os
 import shutil
 import sys
+import traceback
 
 import FreeCAD
 
-HERE = os.path.dirname(os.path.abspath(__file__)) if "__file__" in globals() else os.environ["PLUNGE_EXAMPLES"]
-sys.path.insert(0, HERE)
+HERE = os.environ.get("PLUNGE_EXAMPLES") or os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)  # example_part; the addon is the installed one
 OUT = os.path.abspath(os.environ.get("PLUNGE_OUT", "out"))
 
 
-def fail(message):
-    sys.stderr.write("freecad_demo: %s\n" % message)
-    sys.stderr.flush()
-    os._exit(1)
-
-
 def main():
+    import FreeCADGui
     import example_part
     import plunge
-    from freecad_plugin import PlungeRough, compat
+    from freecad_plugin import PlungeRough, PlungeRoughGui, compat
 
     os.makedirs(OUT, exist_ok=True)
+    # A machinist's unit schema for this session (mm, mm/min): the workbench
+    # otherwise warns in a modal box. The user's preference is left alone.
+    FreeCAD.Units.setSchema(6)
+    FreeCADGui.activateWorkbench(compat.workbench_name())
     doc = FreeCAD.newDocument("PlungeExample")
-    job = example_part.make_job(doc, example_part.freeform_part(sculptured=True))
+    part = doc.addObject("Part::Feature", "Part")
+    part.Shape = example_part.freeform_part(sculptured=True)
+    doc.recompute()
+    job = compat.job_gui().Create([part], openTaskPanel=False)
+    doc.recompute()
     face = example_part.floor_face_name(job.Model.Group[0].Shape, sculptured=True)
     # One tool bit file per plunger, as a tool library keeps them (out/bits/).
     op, tcs = example_part.add_plunge_rough(job, face, (20, 12, 6), bit_folder=os.path.join(OUT, "bits"),
                                             RadialAllowance=0.5, FloorAllowance=0.3)
+    PlungeRoughGui.attach_view_providers(op)
+    doc.recompute()
     plan = PlungeRough.plan_of(op)
     if plan is None:
-        fail("the operation made no plan: " + op.Summary)
+        raise RuntimeError("the operation made no plan: " + op.Summary)
 
     gcode = compat.post_job(job, "linuxcnc", "--no-show-editor")
     with open(os.path.join(OUT, "plunge_rough.ngc"), "w") as f:
@@ -59,13 +69,15 @@ def main():
               "planner: " + os.path.normpath(plunge.__file__)]
     with open(os.path.join(OUT, "summary.txt"), "w") as f:
         f.write("\n".join(lines) + "\n")
-    print("\n".join(lines))
-    print("wrote %s: plunge_rough.ngc, plunge_rough.svg, summary.txt, plunge_example.FCStd" % OUT)
 
 
 try:
+    if os.path.exists(os.path.join(OUT, "demo_error.txt")):
+        os.remove(os.path.join(OUT, "demo_error.txt"))
     main()
-except Exception as e:  # one line, non-zero exit
-    fail("%s: %s" % (type(e).__name__, e))
-sys.stdout.flush()
-os._exit(0)
+except Exception:
+    os.makedirs(OUT, exist_ok=True)
+    with open(os.path.join(OUT, "demo_error.txt"), "w") as f:
+        f.write(traceback.format_exc())
+finally:
+    os._exit(0)

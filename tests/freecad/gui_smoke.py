@@ -1,8 +1,19 @@
-"""GUI smoke test, run inside FreeCAD's GUI (tests/freecad/test_gui.py starts it
-under xvfb-run): open the example, activate the CAM (1.0) or Path (0.20)
-workbench, make the Job as its Job command does, select the floor face, run
-Plunge Rough from the toolbar, tick the plungers, accept, check, screenshot."""
+"""GUI test, run inside FreeCAD's GUI (tests/freecad/test_gui.py starts it under
+xvfb-run) and driven as a user drives it: commands, task panels and their
+buttons, the tree's delete, undo and redo, the simulators' own panels.
+
+1. The example document that the main command makes ($PLUNGE_EXAMPLE_DOC):
+   a proper Job tree, the operation's panel on double-click, Cancel, then the
+   voxel simulator's panel run to the end and its stock probed under plunges;
+   on FreeCAD 1.0 the OpenGL CAM simulator played too.
+2. A new Job: the command greyed without a Job, the Job panel opened and OK'd,
+   the operation from the toolbar (every plunger ticked, no chooser), accept,
+   Cancel after changing the plungers, undo and redo, deleting a companion and
+   the operation from the tree.
+Any modal dialog is recorded and closed; the report view's errors are read at
+the end. Results go to $PLUNGE_GUI_OUT/gui_result.json, screenshots beside it."""
 import json
+import math
 import os
 import sys
 import time
@@ -12,16 +23,17 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 BUILD = os.environ.get("PLUNGE_BUILD_DIR", os.path.join(ROOT, "build"))
 OUT = os.environ.get("PLUNGE_GUI_OUT", os.path.join(BUILD, "test-artifacts"))
-for p in (os.path.join(ROOT, "resources", "examples"), ROOT, os.path.join(BUILD, "cpp")):
-    sys.path.insert(0, p)
+# The addon is the installed one (test_gui.py installs it into this profile's
+# Mod folder and FreeCAD loaded it at start); example_part is from the source.
+sys.path.insert(0, os.path.join(ROOT, "resources", "examples"))
 
 import FreeCAD  # noqa: E402
 import FreeCADGui  # noqa: E402
 from PySide import QtCore, QtGui  # noqa: E402
 
 result = {"ok": False, "steps": []}
-# The tool controller to answer FreeCAD's "Choose a Tool Controller" dialog with
-# (it asks when the job has several), as the user would: the largest plunger.
+# FreeCAD's "Choose a Tool Controller" dialog should not appear; if it does, it
+# is answered with this tool controller and recorded.
 answer = {"tc": None}
 
 
@@ -53,124 +65,29 @@ def watch_dialogs():
         w.close()
 
 
-def report_errors():
-    """What FreeCAD's report view shows as errors (red, the colour of its report
-    highlighter in a default profile) or tracebacks: what the user would see."""
-    view = FreeCADGui.getMainWindow().findChild(QtGui.QTextEdit, "Report view")
-    result["report_found"] = view is not None
-    errors = []
-    block = view.document().begin() if view is not None else None
-    while block is not None and block.isValid():
-        text = block.text()
-        red = [r for r in block.layout().formats()
-               if r.format.foreground().color() == QtGui.QColor(QtCore.Qt.red)]
-        if red or "Traceback" in text:
-            errors.append(text)
-        block = block.next()
-    result["report"] = errors
-    save()
-
-
-def main():
-    os.makedirs(OUT, exist_ok=True)
-    timer = QtCore.QTimer()
-    timer.timeout.connect(watch_dialogs)
-    timer.start(2000)
-    # A machinist's unit schema (mm, mm/min): otherwise Path warns in a modal box
-    # on activation.
-    FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Units").SetInt("UserSchema", 6)
-    FreeCAD.Units.setSchema(6)
-    # The addon as FreeCAD loads it: InitGui.py's hook on the Path workbench.
-    exec(open(os.path.join(ROOT, "InitGui.py")).read(), {"__name__": "InitGui"})
-    import example_part
-    from freecad_plugin import compat
-
-    # Open the example part.
-    doc = FreeCAD.newDocument("PlungeExample")
-    part = doc.addObject("Part::Feature", "Part")
-    part.Shape = example_part.freeform_part(True)
-    doc.recompute()
-    path = os.path.join(OUT, "plunge_example.FCStd")
-    doc.saveAs(path)
-    FreeCAD.closeDocument(doc.Name)
-    doc = FreeCAD.openDocument(path)
-    FreeCADGui.ActiveDocument.ActiveView.viewIsometric()
-    step("opened example")
-
-    result["workbench"] = compat.workbench_name()
-    FreeCADGui.activateWorkbench(result["workbench"])
-    step("workbench " + result["workbench"])
-
-    job = compat.job_gui().Create([doc.getObject("Part")], openTaskPanel=False)
-    tcs = [example_part.add_tool_controller(job, d, n, os.path.join(OUT, "bits")) for d, n in ((20, 2), (12, 3), (6, 4))]
-    doc.recompute()
-    step("job")
-
-    # The command as the user finds it: a toolbar button and a menu entry.
-    mw = FreeCADGui.getMainWindow()
-    bars = [b for b in mw.findChildren(QtGui.QToolBar) if b.isVisible()
-            and any(a.text() == "Plunge Rough" for a in b.actions())]
-    result["toolbar"] = [b.objectName() for b in bars]
-    result["menu"] = [a.text() for a in mw.menuBar().actions() if a.menu() and
-                      any(m.text() == "Plunge Rough" for m in a.menu().actions())]
-    action = next(a for a in bars[0].actions() if a.text() == "Plunge Rough")
-    step("command in toolbar and menu")
-
-    clone = job.Model.Group[0]
-    face = example_part.floor_face_name(clone.Shape, True)
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.Selection.addSelection(doc.Name, clone.Name, face)
-    step("selected " + face)
-
-    answer["tc"] = tcs[0].Label
-    action.trigger()  # as the user clicks it
-    step("command run")
-    ops = [o for o in job.Operations.Group if o.Name.startswith("PlungeRough")]
-    op = ops[0]
-    panel = op.ViewObject.Proxy.panel
-    page = panel.featurePages[-1]
-    for i in range(page.form.toolControllers.count()):
-        item = page.form.toolControllers.item(i)
-        if any(item.text().startswith("T%d " % tc.ToolNumber) for tc in tcs):
-            item.setCheckState(QtCore.Qt.Checked)
-        else:
-            item.setCheckState(QtCore.Qt.Unchecked)
-    result["strategies"] = [page.form.strategy.itemText(i) for i in range(page.form.strategy.count())]
-    result["auto_checkbox"] = page.form.autoSelectTools.isChecked()
-    page.form.radialAllowance.setProperty("rawValue", 0.5)
-    page.form.radialAllowance.editingFinished.emit()
-    step("panel filled")
-    result["base"] = [sub for _, subs in op.Base for sub in subs]
-    panel.accept()
-    doc.recompute()
-    step("accepted")
-
-    result["operations"] = [(o.Label, float(o.ToolController.Tool.Diameter),
-                             sum(1 for c in o.Path.Commands if c.Name == "G1"))
-                            for o in job.Operations.Group]
-    result["summary"] = op.Summary
-    result["radial"] = op.RadialAllowance.Value
-    result["icon"] = op.ViewObject.Proxy.getIcon()
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.ActiveDocument.scrollToTreeItem(op.ViewObject)  # show the operations in the tree
-    FreeCADGui.Selection.addSelection(op)
-    FreeCADGui.ActiveDocument.ActiveView.fitAll()
-    for _ in range(20):
-        QtGui.QApplication.processEvents()
-    # The screen, not mw.grab(): the 3D view is OpenGL and only the screen has it.
-    QtGui.QApplication.primaryScreen().grabWindow(0).save(os.path.join(OUT, "plunge_rough_gui.png"))
-    FreeCADGui.ActiveDocument.ActiveView.saveImage(os.path.join(OUT, "plunge_rough_3d.png"), 1000, 700, "White")
-    step("screenshots")
-    simulate(doc)
-    report_errors()
-    result["ok"] = True
-
-
 def wait(seconds, done=lambda: False):
     end = time.time() + seconds
     while time.time() < end and not done():
         QtGui.QApplication.processEvents()
         time.sleep(0.05)
+
+
+def screenshot(name):
+    # The screen, not mw.grab(): the 3D view is OpenGL and only the screen has it.
+    for _ in range(10):
+        QtGui.QApplication.processEvents()
+    QtGui.QApplication.primaryScreen().grabWindow(0).save(os.path.join(OUT, name))
+
+
+def click_task_button(text):
+    """Presses a button of the open task panel (OK, Cancel, Close) as the user does."""
+    mw = FreeCADGui.getMainWindow()
+    buttons = [b for b in mw.findChildren(QtGui.QPushButton)
+               if b.isVisible() and b.text().replace("&", "") == text]
+    if not buttons:
+        raise RuntimeError("no %s button in the task panel" % text)
+    buttons[0].click()
+    wait(0.5)
 
 
 def click(window, at):
@@ -183,45 +100,298 @@ def click(window, at):
         wait(0.3)
 
 
-def simulate(doc):
-    """The job in the best simulator this FreeCAD has, as the user runs it: the
-    command, then the panel's play (1.0's OpenGL CAM simulator) or fast-forward
-    (0.20's Path simulator) button, each tool cut with its tool controller's solid."""
-    from freecad_plugin import compat
-    name = compat.simulator_command()
-    result["simulator"] = name
+def report_errors():
+    """What FreeCAD's report view shows as errors (red, the colour of its report
+    highlighter in a default profile) or tracebacks: what the user would see."""
+    view = FreeCADGui.getMainWindow().findChild(QtGui.QTextEdit, "Report view")
+    result["report_found"] = view is not None
+    errors = []
+    block = view.document().begin() if view is not None else None
+    while block is not None and block.isValid():
+        text = block.text()
+        red = [r for r in block.layout().formats()
+               if r.format.foreground().color() == QtGui.QColor(QtCore.Qt.red)]
+        # FreeCAD 0.20 itself reports this on opening any document with tool bits
+        # (its ToolBit proxies), with or without this addon; 1.0 does not.
+        known = FreeCAD.Version()[0] == "0" and text.endswith("<class 'AttributeError'>: setAttr failed.")
+        if (red or "Traceback" in text) and not known:
+            errors.append(text)
+        block = block.next()
+    result["report"] = errors
+    save()
+
+
+def plunge_action():
+    mw = FreeCADGui.getMainWindow()
+    bars = [b for b in mw.findChildren(QtGui.QToolBar) if b.isVisible()
+            and any(a.text() == "Plunge Rough" for a in b.actions())]
+    result["toolbar"] = [b.objectName() for b in bars]
+    result["menu"] = [a.text() for a in mw.menuBar().actions() if a.menu() and
+                      any(m.text() == "Plunge Rough" for m in a.menu().actions())]
+    for a in mw.menuBar().actions():
+        if a.menu() and any(m.text() == "Plunge Rough" for m in a.menu().actions()):
+            names = [m.text().replace("&", "") for m in a.menu().actions()]
+            result["menu_neighbour"] = names[names.index("Plunge Rough") - 1]
+    return next(a for a in bars[0].actions() if a.text() == "Plunge Rough") if bars else None
+
+
+def probe_points(plan, edge):
+    """A point at 0.7 x radius of each plunge, with the depth the stock must be
+    cut to there (the lowest stop of the disks over it); points nearer than
+    `edge` to any disk's rim are left out (a voxel may go either way)."""
+    points, expected = [], []
+    for k, p in enumerate(plan):
+        t = 2.399 * k  # spread the probe directions
+        x, y = p["x"] + 0.7 * p["diameter"] / 2 * math.cos(t), p["y"] + 0.7 * p["diameter"] / 2 * math.sin(t)
+        if min(abs(math.hypot(x - q["x"], y - q["y"]) - q["diameter"] / 2) for q in plan) < edge:
+            continue
+        points.append((x, y))
+        expected.append(min(q["z"] for q in plan if math.hypot(x - q["x"], y - q["y"]) < q["diameter"] / 2))
+    return points, expected
+
+
+def heights(mesh_objects, points, top):
+    """The simulated stock's top at each point: the highest hit of a downward ray."""
+    out = []
+    for x, y in points:
+        z = None
+        for m in mesh_objects:
+            for point in m.Mesh.nearestFacetOnRay((x, y, top + 10), (0, 0, -1)).values():
+                z = point[2] if z is None else max(z, point[2])
+        out.append(z)
+    return out
+
+
+def example_document():
+    """Phase 1: the shipped example."""
+    from freecad_plugin import PlungeRough, PlungeRoughGui, compat
+    doc = FreeCAD.openDocument(os.environ["PLUNGE_EXAMPLE_DOC"])
+    FreeCADGui.ActiveDocument.ActiveView.viewIsometric()
+    FreeCADGui.activateWorkbench(compat.workbench_name())
+    result["simulator"] = compat.simulator_command()  # its commands exist once it is active
+    step("example opened")
+    job = doc.getObject("Job")
+    op = doc.getObject("PlungeRough")
+    comps = PlungeRough.companions(op)
+    result["example"] = {
+        "job_view": type(job.ViewObject.Proxy).__name__ if job.ViewObject.Proxy else None,
+        "job_children": sorted(o.Name for o in job.ViewObject.Proxy.claimChildren()) if job.ViewObject.Proxy else [],
+        "op_view": type(op.ViewObject.Proxy).__name__,
+        "companion_views": [type(c.ViewObject.Proxy).__name__ for c in comps],
+        "bit_widths": [round(tc.Tool.Shape.BoundBox.XLength, 3) for tc in job.Tools.Group],
+        "bit_diameters": [float(tc.Tool.Diameter) for tc in job.Tools.Group],
+    }
+    plan_before = PlungeRough.plan_of(op)["plunges"]
+    # Double-click: the operation's own panel; Cancel leaves it as it was.
+    FreeCADGui.ActiveDocument.setEdit(op.Name)
+    wait(1)
+    panel = op.ViewObject.Proxy.panel
+    result["example"]["panel"] = panel is not None and panel.featurePages[-1].form.findChild(
+        QtGui.QListWidget, "toolControllers") is not None
+    click_task_button("Cancel")
+    doc.recompute()
+    result["example"]["after_cancel"] = {
+        "same_plan": PlungeRough.plan_of(op)["plunges"] == plan_before,
+        "operations": [o.Name for o in job.Operations.Group] == [op.Name] + [c.Name for c in comps]}
+    step("example: panel and cancel")
+
+    # The voxel simulator's own panel, fast-forwarded to the end.
+    name = compat.voxel_simulator_command()
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.runCommand(name)
     wait(2)
     mw = FreeCADGui.getMainWindow()
-    button = "toolButtonPlay" if name == "CAM_SimulatorGL" else "toolButtonFF"
-    mw.findChild(QtGui.QToolButton, button).click()
-    if name == "CAM_SimulatorGL":
-        # Its own OpenGL window, played with its on-screen buttons along the
-        # bottom edge: faster (>>, twice), then play.
-        windows = [w for w in QtGui.QGuiApplication.topLevelWindows()
-                   if w.isVisible() and w is not mw.windowHandle() and w.width() > 200]
-        result["simulator_windows"] = len(windows)
-        for w in windows:
-            for x in (136, 136, 52):
-                click(w, QtCore.QPointF(x, w.height() - 34))
-        wait(110)  # x40: the whole job, about a minute and a half under xvfb
-    else:  # the play button comes back when the simulation has ended
-        play = mw.findChild(QtGui.QToolButton, "toolButtonPlay")
-        wait(300, lambda: play.isEnabled())
-        result["stock_volume"] = doc.getObject("Job").Stock.Shape.Volume
-        cut = doc.getObject("CutMaterial")
-        result["simulated_volume"] = cut.Mesh.Volume if cut is not None else None
-        for o in doc.Objects:  # the cut material alone, from above
-            if o.ViewObject is not None and o.Name not in ("CutMaterial", "CutMaterialIn"):
-                o.ViewObject.Visibility = False
-        FreeCADGui.ActiveDocument.ActiveView.viewTop()
-        FreeCADGui.ActiveDocument.ActiveView.fitAll()
-        wait(1)
-    QtGui.QApplication.primaryScreen().grabWindow(0).save(os.path.join(OUT, "plunge_rough_simulation.png"))
-    step("simulated with " + name)
+    mw.findChild(QtGui.QToolButton, "toolButtonFF").click()
+    play = mw.findChild(QtGui.QToolButton, "toolButtonPlay")
+    wait(1)
+    wait(400, lambda: play.isEnabled())
+    meshes = [o for o in doc.Objects if o.Name.startswith("CutMaterial")]
+    plan = PlungeRough.plan_of(op)["plunges"]
+    top = job.Stock.Shape.BoundBox.ZMax
+    # Probe the simulated stock at 0.7 x radius of every plunge.
+    points, expected = probe_points(plan, 0.6)
+    found = heights(meshes, points, top)
+    result["simulation"] = {"command": name, "probes": len(points),
+                            "wrong": [(round(x, 2), round(y, 2), e, f) for (x, y), e, f in zip(points, expected, found)
+                                      if f is None or abs(f - e) > 1.0]}
+    for o in doc.Objects:  # the cut stock alone, from above
+        if o.ViewObject is not None and not o.Name.startswith("CutMaterial"):
+            o.ViewObject.Visibility = False
+    FreeCADGui.ActiveDocument.ActiveView.viewTop()
+    FreeCADGui.ActiveDocument.ActiveView.fitAll()
+    wait(1)
+    screenshot("example_simulated.png")
     FreeCADGui.Control.closeDialog()
     wait(1)
+    step("example: simulated with " + name)
+
+    if compat.simulator_command() == "CAM_SimulatorGL":
+        play_gl_simulator()
+    FreeCAD.closeDocument(doc.Name)
+    wait(1)
+    step("example closed")
+
+
+def play_gl_simulator():
+    """FreeCAD 1.0's OpenGL CAM simulator: its own window, played with its
+    on-screen buttons along the bottom edge: faster (>>, twice), then play."""
+    for o in FreeCAD.ActiveDocument.Objects:
+        if o.ViewObject is not None and not o.Name.startswith("CutMaterial"):
+            o.ViewObject.Visibility = True
+    FreeCADGui.runCommand("CAM_SimulatorGL")
+    wait(2)
+    mw = FreeCADGui.getMainWindow()
+    mw.findChild(QtGui.QToolButton, "toolButtonPlay").click()
+    windows = [w for w in QtGui.QGuiApplication.topLevelWindows()
+               if w.isVisible() and w is not mw.windowHandle() and w.width() > 200]
+    result["gl_simulator_windows"] = len(windows)
+    for w in windows:
+        for x in (136, 136, 52):
+            click(w, QtCore.QPointF(x, w.height() - 34))
+    wait(110)  # x40: the whole job, about a minute and a half under xvfb
+    screenshot("example_gl_simulator.png")
+    FreeCADGui.Control.closeDialog()
+    wait(1)
+    step("example: OpenGL CAM simulator played")
+
+
+def new_job():
+    """Phase 2: a new Job, as a user makes one."""
+    import example_part
+    from freecad_plugin import PlungeRough, compat
+    mw = FreeCADGui.getMainWindow()
+    doc = FreeCAD.newDocument("PlungeNew")
+    part = doc.addObject("Part::Feature", "Part")
+    part.Shape = example_part.freeform_part(True)
+    doc.recompute()
+    FreeCADGui.ActiveDocument.ActiveView.viewIsometric()
+    action = plunge_action()
+    wait(1.5)  # FreeCAD refreshes its commands' state on a timer
+    result["enabled_without_job"] = action.isEnabled() if action else None
+    step("command greyed without a Job")
+
+    job = compat.job_gui().Create([part], openTaskPanel=False)
+    tcs = [example_part.add_tool_controller(job, d, n, os.path.join(OUT, "bits")) for d, n in ((20, 2), (12, 3), (6, 4))]
+    doc.recompute()
+    # The Job's own panel, with this addon registered on its setup sheet: open, OK.
+    FreeCADGui.ActiveDocument.setEdit(job.Name)
+    wait(1)
+    screenshot("job_panel.png")
+    click_task_button("OK")
+    wait(1)
+    result["job_panel_closed"] = FreeCADGui.Control.activeDialog() is False or \
+        FreeCADGui.Control.activeDialog() is None or not FreeCADGui.Control.activeDialog()
+    step("Job panel opened and OK")
+
+    wait(1.5)
+    result["enabled_with_job"] = action.isEnabled()
+    clone = job.Model.Group[0]
+    face = example_part.floor_face_name(clone.Shape, True)
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(doc.Name, clone.Name, face)
+    answer["tc"] = tcs[0].Label
+    action.trigger()  # as the user clicks it
+    wait(1)
+    step("command run")
+    op = next(o for o in job.Operations.Group if o.Name.startswith("PlungeRough"))
+    panel = op.ViewObject.Proxy.panel
+    page = panel.featurePages[-1]
+    items = [page.form.toolControllers.item(i) for i in range(page.form.toolControllers.count())]
+    result["plunger_list"] = [(i.text(), i.checkState() == QtCore.Qt.Checked) for i in items]
+    result["strategies"] = [page.form.strategy.itemText(i) for i in range(page.form.strategy.count())]
+    result["auto_checkbox"] = page.form.autoSelectTools.isChecked()
+    result["panel_icon"] = not panel.featurePages[-1].getIcon(op) is None
+    page.form.radialAllowance.setProperty("rawValue", 0.5)
+    page.form.radialAllowance.editingFinished.emit()
+    result["base"] = [sub for _, subs in op.Base for sub in subs]
+    screenshot("plunge_rough_panel.png")
+    click_task_button("OK")
+    doc.recompute()
+    step("accepted")
+    result["operations"] = [(o.Label, float(o.ToolController.Tool.Diameter),
+                             sum(1 for c in o.Path.Commands if c.Name == "G1"))
+                            for o in job.Operations.Group]
+    result["summary"] = op.Summary
+    result["radial"] = op.RadialAllowance.Value
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.ActiveDocument.scrollToTreeItem(op.ViewObject)
+    FreeCADGui.Selection.addSelection(op)
+    FreeCADGui.ActiveDocument.ActiveView.fitAll()
+    screenshot("plunge_rough_gui.png")
+    FreeCADGui.ActiveDocument.ActiveView.saveImage(os.path.join(OUT, "plunge_rough_3d.png"), 1000, 700, "White")
+    step("screenshots")
+
+    # Edit, untick the 6 mm plunger, Cancel: nothing changes, nothing is left over.
+    names = sorted(o.Name for o in doc.Objects)
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.ActiveDocument.setEdit(op.Name)
+    wait(1)
+    page = op.ViewObject.Proxy.panel.featurePages[-1]
+    for i in range(page.form.toolControllers.count()):
+        item = page.form.toolControllers.item(i)
+        if item.text().startswith("T4 "):
+            item.setCheckState(QtCore.Qt.Unchecked)
+    wait(0.5)
+    click_task_button("Cancel")
+    doc.recompute()
+    result["after_cancel"] = {"same_objects": sorted(o.Name for o in doc.Objects) == names,
+                              "plungers": [float(tc.Tool.Diameter) for tc in op.ToolControllers],
+                              "operations": [o.Label for o in job.Operations.Group]}
+    step("cancel after changing the plungers")
+
+    # Undo the panel's changes and the creation, then redo both.
+    FreeCADGui.runCommand("Std_Undo")
+    FreeCADGui.runCommand("Std_Undo")
+    doc.recompute()
+    result["after_undo"] = {"plunge_objects": [o.Name for o in doc.Objects if o.Name.startswith("PlungeRough")],
+                            "operations": [o.Name for o in job.Operations.Group]}
+    FreeCADGui.runCommand("Std_Redo")
+    FreeCADGui.runCommand("Std_Redo")
+    doc.recompute()
+    op = doc.getObject("PlungeRough")
+    result["after_redo"] = {"operations": [o.Label for o in job.Operations.Group],
+                            "plunges": PlungeRough.plan_of(op)["stats"]["plunge_count"] if op and
+                            PlungeRough.plan_of(op) else 0}
+    step("undo and redo")
+
+    # Delete the 12 mm companion from the tree: the plan goes on without it.
+    comp = next(c for c in PlungeRough.companions(op) if float(c.ToolController.Tool.Diameter) == 12)
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(comp)
+    FreeCADGui.runCommand("Std_Delete")
+    wait(1)
+    doc.recompute()
+    plan = PlungeRough.plan_of(op)
+    result["after_companion_delete"] = {
+        "operations": [o.Label for o in job.Operations.Group],
+        "diameters": sorted({p["diameter"] for p in plan["plunges"]}) if plan else None,
+        "coverage": plan["stats"]["coverage"] if plan else None}
+    step("companion deleted")
+    # Delete the operation: no "referencing objects might break" question.
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(op)
+    FreeCADGui.runCommand("Std_Delete")
+    wait(1)
+    result["after_op_delete"] = [o.Name for o in doc.Objects if o.Name.startswith("PlungeRough")]
+    step("operation deleted")
+
+
+def main():
+    os.makedirs(OUT, exist_ok=True)
+    timer = QtCore.QTimer()
+    timer.timeout.connect(watch_dialogs)
+    timer.start(1000)
+    # A machinist's unit schema (mm, mm/min): otherwise the workbench warns in a
+    # modal box on activation.
+    FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Units").SetInt("UserSchema", 6)
+    FreeCAD.Units.setSchema(6)
+    from freecad_plugin import compat
+    result["addon"] = os.path.dirname(os.path.dirname(os.path.abspath(compat.__file__)))
+    result["workbench"] = compat.workbench_name()
+    example_document()
+    new_job()
+    report_errors()
+    result["ok"] = True
 
 
 try:
@@ -229,5 +399,9 @@ try:
 except Exception:
     result["error"] = traceback.format_exc()
 finally:
+    try:
+        report_errors()
+    except Exception:
+        pass
     save()
     os._exit(0)

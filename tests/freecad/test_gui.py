@@ -1,6 +1,8 @@
-"""The op through FreeCAD's GUI under a virtual display (xvfb-run): the command
-sits in the CAM (1.0) or Path (0.20) workbench's toolbar and menu, creates the op from the selected face, the task
-panel is accepted, the op has paths, and a screenshot is kept."""
+"""The addon in FreeCAD's GUI under a virtual display (xvfb-run), as a user works:
+the example document made by the main command's own script
+(resources/examples/freecad_demo.py, in the GUI), then gui_smoke.py driving the
+commands, panels, tree and simulators (see there). Screenshots are kept in
+build/test-artifacts/."""
 import json
 import os
 import shutil
@@ -8,47 +10,135 @@ import subprocess
 
 import pytest
 
-from conftest import BUILD, HERE
+from conftest import BUILD, HERE, ROOT
 
 pytestmark = pytest.mark.skipif(not shutil.which("xvfb-run") or not shutil.which("freecad"),
                                 reason="needs xvfb-run and FreeCAD's GUI")
 
 
-def test_gui_smoke():
-    out = os.path.join(BUILD, "test-artifacts")
-    os.makedirs(out, exist_ok=True)
+def run_gui(script, env, timeout):
+    # QtWebEngine (FreeCAD's start page) refuses to start as root without this.
+    env = dict(os.environ, QT_QPA_PLATFORM="xcb", QTWEBENGINE_DISABLE_SANDBOX="1", **env)
+    return subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24", "freecad", script],
+                          env=env, timeout=timeout, capture_output=True, text=True)
+
+
+@pytest.fixture(scope="module")
+def out():
+    path = os.path.join(BUILD, "test-artifacts")
+    os.makedirs(path, exist_ok=True)
+    return path
+
+
+def install_addon():
+    """The addon as a user installs it: into the FreeCAD profile's Mod folder
+    (this test's own profile, see tests/CMakeLists.txt). FreeCAD then loads it
+    at start, and only modules of installed addons may be loaded with a
+    document (Debian's FreeCAD refuses others)."""
+    run = subprocess.run(["freecadcmd", "-c", "import FreeCAD; print('MODDIR=' + FreeCAD.getUserAppDataDir() + 'Mod')"],
+                         capture_output=True, text=True, timeout=120, cwd="/tmp")
+    mod = [l[len("MODDIR="):].strip() for l in run.stdout.replace("\r", "\n").splitlines() if l.startswith("MODDIR=")]
+    assert mod, run.stdout + run.stderr
+    shutil.rmtree(os.path.join(mod[0], "PlungeRough"), ignore_errors=True)
+    subprocess.run(["cmake", "--install", BUILD, "--component", "freecad_addon", "--prefix", mod[0]],
+                   check=True, capture_output=True)
+    return os.path.join(mod[0], "PlungeRough")
+
+
+@pytest.fixture(scope="module")
+def result(out):
+    """The installed addon; the example made by the main command's demo script;
+    then the GUI session on it."""
+    install_addon()
+    example = os.path.join(out, "example")
+    shutil.rmtree(example, ignore_errors=True)
+    run = run_gui(os.path.join(ROOT, "resources", "examples", "freecad_demo.py"), {"PLUNGE_OUT": example}, 600)
+    error = os.path.join(example, "demo_error.txt")
+    assert not os.path.exists(error), open(error).read()
+    doc = os.path.join(example, "plunge_example.FCStd")
+    assert os.path.exists(doc), run.stdout[-2000:] + run.stderr[-2000:]
     result_file = os.path.join(out, "gui_result.json")
     if os.path.exists(result_file):
         os.remove(result_file)
-    # QtWebEngine (FreeCAD's start page) refuses to start as root without this.
-    env = dict(os.environ, PLUNGE_BUILD_DIR=BUILD, PLUNGE_GUI_OUT=out, QT_QPA_PLATFORM="xcb",
-               QTWEBENGINE_DISABLE_SANDBOX="1")
-    subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24", "freecad", os.path.join(HERE, "gui_smoke.py")],
-                   env=env, timeout=600, capture_output=True)
+    run_gui(os.path.join(HERE, "gui_smoke.py"),
+            {"PLUNGE_BUILD_DIR": BUILD, "PLUNGE_GUI_OUT": out, "PLUNGE_EXAMPLE_DOC": doc}, 1200)
     with open(result_file) as f:
-        result = json.load(f)
-    assert result["ok"], result.get("error") or result["steps"]
-    assert not result.get("dialogs"), result["dialogs"]  # no unexpected modal dialog
-    assert result["report_found"] and not result["report"], result["report"]  # nothing went wrong in the report view
-    assert result["chose"].startswith("TC: 20")  # FreeCAD's tool controller chooser was answered
+        return json.load(f)
+
+
+def expected_names():
     import FreeCAD
-    expected = ("CAMWorkbench", "&CAM") if int(FreeCAD.Version()[0]) >= 1 else ("PathWorkbench", "&Path")
-    assert result["workbench"] == expected[0]
-    assert result["toolbar"] == ["New Operations"] and result["menu"] == [expected[1]]
+    if int(FreeCAD.Version()[0]) >= 1:
+        return {"workbench": "CAMWorkbench", "menu": "&CAM", "voxel": "CAM_Simulator", "best": "CAM_SimulatorGL"}
+    return {"workbench": "PathWorkbench", "menu": "&Path", "voxel": "Path_Simulator", "best": "Path_Simulator"}
+
+
+def test_the_session_ran_without_errors(result):
+    assert result["ok"], result.get("error") or result["steps"]
+    assert result["addon"].endswith(os.path.join("Mod", "PlungeRough"))  # the installed copy
+    assert not result.get("dialogs"), result["dialogs"]  # no unexpected modal dialog
+    assert result["report_found"] and not result["report"], result["report"]  # nothing red in the report view
+
+
+def test_example_document_is_a_gui_document(result):
+    """Made by the main command's script in the GUI: a Job tree, the operation's
+    own view provider and panel, tool bits as wide as their diameters."""
+    ex = result["example"]
+    assert ex["job_view"] and len(ex["job_children"]) >= 3  # model, stock, operations, tools
+    assert ex["op_view"] == "ViewProvider" and set(ex["companion_views"]) == {"CompanionViewProvider"}
+    plungers = [(w, d) for w, d in zip(ex["bit_widths"], ex["bit_diameters"]) if d in (20, 12, 6)]
+    # The solid the simulators cut with is as wide as the bit (it was 5 mm for
+    # every plunger once); saved solids are tessellation-exact to about 0.3 %.
+    assert len(plungers) == 3 and all(abs(w - d) < 0.01 * d for w, d in plungers)
+    assert ex["panel"] and ex["after_cancel"] == {"same_plan": True, "operations": True}
+
+
+def test_example_simulates_as_a_cleared_pocket(result):
+    """The voxel simulator's own panel, run to the end with the tool controllers'
+    own tools: under every probed plunge the stock is cut to the plan's depth."""
+    sim = result["simulation"]
+    assert sim["command"] == expected_names()["voxel"]
+    assert sim["probes"] > 20
+    assert not sim["wrong"], sim["wrong"]
+    if result["simulator"] == "CAM_SimulatorGL":
+        assert result["gl_simulator_windows"] == 1
+
+
+def test_command_in_the_workbench(result):
+    names = expected_names()
+    assert result["workbench"] == names["workbench"] and result["simulator"] == names["best"]
+    assert result["toolbar"] == ["New Operations"] and result["menu"] == [names["menu"]]
+    assert result["menu_neighbour"] == "Adaptive"  # with the other operations
+    assert result["enabled_without_job"] is False and result["enabled_with_job"] is True
+
+
+def test_new_operation_from_the_toolbar(result):
+    assert "chose" not in result  # FreeCAD did not need to ask: the largest plunger is the op's own
+    assert result["job_panel_closed"]
+    assert [checked for _, checked in result["plunger_list"]] == [True, True, True]  # no default 5 mm tool
     assert result["base"] and result["base"][0].startswith("Face")
-    ops = result["operations"]
-    assert [d for _, d, _ in ops] == [20, 12, 6]
-    assert all(n > 0 for _, _, n in ops)  # every tool plunges
+    assert [d for _, d, _ in result["operations"]] == [20, 12, 6]
+    assert all(n > 0 for _, _, n in result["operations"])  # every tool plunges
+    assert all("(" not in label for label, _, _ in result["operations"])
     assert result["radial"] == 0.5  # the panel's value reached the op
     assert result["strategies"] == ["Packing", "Grid (honeycomb)", "Grid (square)"]
-    assert result["auto_checkbox"] is False
+    assert result["auto_checkbox"] is False and result["panel_icon"]
     assert "coverage" in result["summary"]
-    assert os.path.getsize(os.path.join(out, "plunge_rough_gui.png")) > 10000
-    # The version's own simulator ran the job: 1.0's OpenGL window opened, or
-    # 0.20's voxel simulation removed material.
-    assert result["simulator"] == ("CAM_SimulatorGL" if expected[0] == "CAMWorkbench" else "Path_Simulator")
+
+
+def test_cancel_undo_and_delete(result):
+    cancel = result["after_cancel"]
+    assert cancel["same_objects"] and cancel["plungers"] == [20, 12, 6]
+    assert result["after_undo"] == {"plunge_objects": [], "operations": []}
+    assert len(result["after_redo"]["operations"]) == 3 and result["after_redo"]["plunges"] > 0
+    deleted = result["after_companion_delete"]
+    assert len(deleted["operations"]) == 2 and deleted["diameters"] == [6, 20] and deleted["coverage"] > 0.99
+    assert result["after_op_delete"] == []
+
+
+def test_screenshots(result, out):
+    names = ["example_simulated.png", "job_panel.png", "plunge_rough_panel.png", "plunge_rough_gui.png"]
     if result["simulator"] == "CAM_SimulatorGL":
-        assert result["simulator_windows"] == 1
-    else:
-        assert 0 < result["simulated_volume"] < 0.95 * result["stock_volume"]
-    assert os.path.getsize(os.path.join(out, "plunge_rough_simulation.png")) > 10000
+        names.append("example_gl_simulator.png")
+    for name in names:
+        assert os.path.getsize(os.path.join(out, name)) > 10000, name
