@@ -244,9 +244,16 @@ class ObjectPlungeRough(PathOp.ObjectOp):
             if obj.AutoSelectTools:
                 data["tool_library"] = data.pop("tools")
                 data["tools"] = "auto"
-            plan = planner().plan(data, svg=True)
+            progress = PlanProgress(obj.Label)
+            try:
+                plan = planner().plan(data, svg=True, progress=progress)
+            finally:
+                progress.stop()
         except ValueError as e:
             _report(obj, str(e))
+            return
+        except _ABORT:  # FreeCAD's progress indicator: the user aborted (Esc)
+            _report(obj, translate("PlungeRough", "planning cancelled"))
             return
         # FinalDepth is the deepest any plunge goes.
         for p in plan["plunges"]:
@@ -278,6 +285,36 @@ class ObjectPlungeRough(PathOp.ObjectOp):
                 comp.Active = active
         self.commandlist.extend(toolCommands(obj, plunges_of_tool(plan, own_tc)))
         PathFeedRate.setFeedRate(self.commandlist, own_tc)
+
+
+# What FreeCAD's progress indicator raises when the user aborts (not an Exception).
+_ABORT = getattr(FreeCAD.Base, "FreeCADAbort", KeyboardInterrupt)
+
+
+class PlanProgress:
+    """The planner's progress in FreeCAD's progress indicator (the GUI's status
+    bar, which keeps the GUI drawn while planning; Esc there asks whether to
+    abort, and aborting cancels the plan)."""
+
+    def __init__(self, label):
+        self.label = label
+        self.stage = None
+        self.indicator = FreeCAD.Base.ProgressIndicator()
+        self.running = False
+
+    def __call__(self, fraction, stage):
+        if stage != self.stage:  # one busy indicator per stage, named by it
+            self.stop()
+            self.indicator.start("%s: %s (%d %%)" % (self.label, stage, round(100 * fraction)), 0)
+            self.running = True
+            self.stage = stage
+        self.indicator.next(True)  # raises when the user aborts
+        return True
+
+    def stop(self):
+        if self.running:
+            self.indicator.stop()
+            self.running = False
 
 
 def canned_cycle_warning(obj):

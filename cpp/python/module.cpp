@@ -71,13 +71,28 @@ py::object fromJson(const json& j) {
   }
 }
 
-py::object planDict(const py::dict& input, bool svg) {
+// The plan's progress, reported on this (the calling) thread: the user's
+// callable, if any, and Ctrl+C (KeyboardInterrupt) either way.
+plunge::Progress progressOf(const py::object& callback) {
+  return plunge::Progress([callback](double fraction, const std::string& stage) {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    if (callback.is_none()) return true;
+    const py::object go = callback(fraction, stage);
+    return go.is_none() || go.cast<bool>();
+  });
+}
+
+py::object planDict(const py::dict& input, bool svg, const py::object& progress) {
   const std::string text = toJson(input, "input").dump();
+  if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+    throw plunge::Error("progress: expected a callable (fraction, stage) or None");
+  const plunge::Progress reporter = progressOf(progress);
   std::string out, picture;
   {
     py::gil_scoped_release release;
     const plunge::PlanInput in = plunge::planInputFromJson(text);
-    const plunge::Plan plan = plunge::plan(in);
+    const plunge::Plan plan = plunge::plan(in, reporter);
     out = plunge::planToJson(plan);
     if (svg) picture = plunge::planToSvg(in, plan);
   }
@@ -128,9 +143,11 @@ plunge::OptimizeResult optimizePy(const py::function& f, const std::vector<std::
 PYBIND11_MODULE(plunge, m) {
   m.doc() = "Plunge roughing planner: circle packing, gap covering, sequencing and depths";
   py::register_exception<plunge::Error>(m, "PlanError", PyExc_ValueError);
-  m.def("plan", &planDict, py::arg("input"), py::arg("svg") = false,
+  m.def("plan", &planDict, py::arg("input"), py::arg("svg") = false, py::arg("progress") = py::none(),
         "Plan a pocket: input and output dicts as in docs/plan-format.md; with svg=True "
-        "the result also holds \"svg\", the plan's picture.");
+        "the result also holds \"svg\", the plan's picture. progress(fraction, stage) is called "
+        "about every 0.1 s while planning; returning False cancels (ValueError \"planning cancelled\"). "
+        "Ctrl+C interrupts planning (KeyboardInterrupt).");
   py::class_<plunge::OptimizeResult>(m, "Result", "Global optimum found by plunge.optimize")
       .def_property_readonly("x", [](const plunge::OptimizeResult& r) { return asTuple(r.x); })
       .def_readonly("value", &plunge::OptimizeResult::value)

@@ -240,8 +240,10 @@ class Coverer {
 
     coverDelaunayGaps(packed);
     generating_ = true;
-    for (size_t i = 0; i < pieces_.size(); ++i)
+    for (size_t i = 0; i < pieces_.size(); ++i) {
+      opt_.progress.tick();
       if (pieces_[i].alive) generateCandidates(static_cast<int>(i));
+    }
     // The greedy counts with circumscribed disks; the measurement is conservative.
     // Where the two disagree about the target, cover a little more.
     double target = opt_.minCoverage * result_.accessibleArea;
@@ -541,6 +543,7 @@ class Coverer {
 
   void coverResidual(double target) {
     for (int guard = 0; guard < 1000000; ++guard) {
+      opt_.progress.tick();
       const bool pinMode = pins_ > 0;
       if (!pinMode && result_.accessibleArea - uncovered_ >= target) break;
       auto& q = pinMode ? pinQueue_ : wallQueue_;

@@ -81,6 +81,7 @@ CoverResult gridPlacements(const Region& region, const std::vector<double>& radi
     const double need = opt.minGain * M_PI * r * r;
     int row = 0;
     for (double y = lo.y + r + opt.allowance; y <= hi.y - r - opt.allowance + 1e-9; y += dy, ++row) {
+      opt.progress.tick();
       const double shift = opt.pattern == GridPattern::Honeycomb && (row % 2) ? 0.5 * dx : 0.0;
       for (double x = lo.x + r + opt.allowance + shift; x <= hi.x - r - opt.allowance + 1e-9; x += dx) {
         const Vec2 c{x, y};

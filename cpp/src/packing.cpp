@@ -93,6 +93,7 @@ class Packer {
     queue_.clear();
     seedCandidates();
     while (!queue_.empty()) {
+      opt_.progress.tick();
       const int id = std::get<3>(*queue_.begin());
       if (opt_.order == PackingOrder::Lattice && !hasLattice_) anchorLattice(cands_[id]);
       place(cands_[id].p);

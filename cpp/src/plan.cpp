@@ -96,9 +96,10 @@ void validate(PlanInput& in) {
   }
 }
 
-Plan plan(PlanInput in) {
-  if (in.autoTools) return planWithToolSelection(in);
+Plan plan(PlanInput in, const Progress& progress) {
+  if (in.autoTools) return planWithToolSelection(in, progress);
   const auto t0 = std::chrono::steady_clock::now();
+  progress.stage(0.0, "checking the pocket");
   validate(in);
   const Region region(in.boundary, in.islands);
 
@@ -131,17 +132,21 @@ Plan plan(PlanInput in) {
     po.allowance = in.radialAllowance;
     po.contactRatio = in.contactRatio;
     po.order = order;
+    po.progress = progress;
     CoveringOptions co;
     co.allowance = in.radialAllowance;
     co.minCoverage = in.minCoverage;
+    co.progress = progress;
     return coverRegion(region, radii, packMaxHoleDegree(region, radii, po), co);
   };
   CoverResult cover;
+  progress.stage(0.05, "packing and covering");
   if (in.strategy == "grid") {
     GridOptions go;
     go.pattern = gridPatternFromName(in.gridPattern);
     go.step = in.gridStep;
     go.allowance = in.radialAllowance;
+    go.progress = progress;
     cover = gridPlacements(region, radii, go);
   } else if (in.packingOrder == "hole_degree") {
     cover = packAndCover(PackingOrder::HoleDegree);
@@ -157,6 +162,7 @@ Plan plan(PlanInput in) {
   // Execution order: tools largest first, each tool's plunges as a short open path
   // starting nearest to where the previous tool ended.
   // Depths (4.4): the floor's peaks once, then each plunge's disk.
+  progress.stage(0.75, "ordering the plunges and their depths");
   const Vec2 lo = region.minCorner(), hi = region.maxCorner();
   const DepthSolver depths(*floor, lo, hi, std::max(0.5 * rMin, 1e-3 * dist(lo, hi)));
   Vec2 at = in.start ? *in.start : in.boundary.front();
@@ -171,6 +177,7 @@ Plan plan(PlanInput in) {
     const Cutter cutter{in.tools[t].shape, 0.5 * in.tools[t].diameter,
                         in.tools[t].shape == CutterShape::Ball ? 0.5 * in.tools[t].diameter : in.tools[t].cornerRadius};
     for (int i : tour(pts, false, at, to)) {
+      progress.tick(0.8 + 0.2 * static_cast<double>(out.plunges.size()) / cover.disks.size());
       const Vec2 p = pts[i];
       const double z = depths.stopHeight(p, cutter) + in.floorAllowance;
       if (z >= in.topZ) {

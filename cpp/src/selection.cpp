@@ -51,7 +51,7 @@ std::string setName(const std::vector<double>& ds) {
 
 }  // namespace
 
-Plan planWithToolSelection(const PlanInput& input) {
+Plan planWithToolSelection(const PlanInput& input, const Progress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   PlanInput in = input;
   in.tools = in.library;
@@ -127,6 +127,7 @@ Plan planWithToolSelection(const PlanInput& input) {
   std::optional<Plan> bestPlan;
   std::vector<double> chosen;
   std::vector<double> included;
+  int planned = 0;  // tool sets planned so far, for the progress
   std::function<void(size_t)> search = [&](size_t i) {
     // Bound: every set below this node has at least these tools, and no disk
     // larger than the largest still possible.
@@ -152,7 +153,10 @@ Plan planWithToolSelection(const PlanInput& input) {
       sub.autoTools = false;
       sub.tools.clear();
       for (double d : set) sub.tools.push_back(toolOf(d));
-      Plan p = plan(sub);
+      // The k-th planned set takes its share of the progress (at most 2^n sets).
+      const double share = 1.0 / std::ldexp(1.0, static_cast<int>(others.size()));
+      Plan p = plan(sub, progress.sub(planned * share, (planned + 1) * share));
+      ++planned;
       r.evaluated = true;
       r.plunges = p.stats.plungeCount;
       r.coverage = p.stats.coverage;

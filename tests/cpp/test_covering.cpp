@@ -8,6 +8,14 @@
 
 using namespace plunge;
 
+// Covering options by allowance and target coverage.
+static CoveringOptions covering(double allowance, double minCoverage) {
+  CoveringOptions o;
+  o.allowance = allowance;
+  o.minCoverage = minCoverage;
+  return o;
+}
+
 TEST(Covering, AccessibleRegionOfARectangle) {
   const Region r({{0, 0}, {200, 0}, {200, 100}, {0, 100}}, {});
   // Shrunk by 0.5, opened by radius 3: the corners lose (4 - pi) r^2.
@@ -40,7 +48,7 @@ TEST(Covering, GapBetweenThreeTouchingCirclesGetsTheNextLargerTool) {
   const Region region({{-100, -100}, {120, -100}, {120, 120}, {-100, 120}}, {});
   const double h = std::sqrt(3.0) * 10;
   std::vector<PackedDisk> tri{{{0, 0}, 10, 10, 0}, {{20, 0}, 10, 10, 0}, {{10, h}, 10, 10, 0}};
-  const CoverResult res = coverRegion(region, {10, 6, 3}, tri, {0.0, 0.2});
+  const CoverResult res = coverRegion(region, {10, 6, 3}, tri, covering(0.0, 0.2));
   bool found = false;
   for (const CoverDisk& d : res.disks)
     if (d.stage == Stage::Gap && dist(d.center, {10, h / 3}) < 0.05) {
@@ -86,7 +94,7 @@ TEST(Covering, RandomPocketsAreCoveredWithoutGouging) {
     PackingOptions po;
     po.allowance = allowance;
     const auto packed = packMaxHoleDegree(region, radii, po);
-    const CoverResult res = coverRegion(region, radii, packed, {allowance, 0.996});
+    const CoverResult res = coverRegion(region, radii, packed, covering(allowance, 0.996));
     std::vector<Loop> loops{outer};
     loops.insert(loops.end(), islands.begin(), islands.end());
     for (const CoverDisk& d : res.disks) {
@@ -113,7 +121,7 @@ TEST(Covering, ThesisContactRatioAlsoReachesTheTarget) {
   PackingOptions po;
   po.contactRatio = 1.0;  // disjoint disks, as in the thesis
   const auto packed = packMaxHoleDegree(region, radii, po);
-  const CoverResult res = coverRegion(region, radii, packed, {0.0, 0.996});
+  const CoverResult res = coverRegion(region, radii, packed, covering(0.0, 0.996));
   EXPECT_GE(measuredCoverage(region, 3, 0.0, res.disks), 0.995);
 }
 
@@ -127,7 +135,7 @@ TEST(Covering, SmallRectanglesFinishWithBoundedPlunges) {
     for (double h = 20; h <= 50; h += 10) {
       const Region region({{0, 0}, {w, 0}, {w, h}, {0, h}}, {});
       const auto packed = packMaxHoleDegree(region, radii, {});
-      const CoverResult res = coverRegion(region, radii, packed, {0.0, 0.996});
+      const CoverResult res = coverRegion(region, radii, packed, covering(0.0, 0.996));
       EXPECT_GE(measuredCoverage(region, 3, 0.0, res.disks), 0.995) << w << " x " << h;
       const double bound = res.accessibleArea / (2.598 * 9) + 2 * (w + h) / 3;
       EXPECT_LE(static_cast<double>(res.disks.size()), bound) << w << " x " << h;

@@ -15,6 +15,14 @@ double lineDistance(Vec2 p, Vec2 a, Vec2 b) { return std::fabs(cross(b - a, p - 
 
 // --- corner placements (thesis 4.2.2.4), against hand-computed tangency -------
 
+// Packing options by contact ratio and allowance.
+static PackingOptions packing(double contactRatio, double allowance) {
+  PackingOptions o;
+  o.contactRatio = contactRatio;
+  o.allowance = allowance;
+  return o;
+}
+
 TEST(CornerPlacement, TwoWallsAtARightAngle) {
   // Bottom and right walls of a counter-clockwise square meet at (100, 0).
   const auto p = cornerPlacementsWallWall({{0, 0}, {100, 0}}, {{100, 0}, {100, 100}}, 5);
@@ -231,7 +239,7 @@ TEST(Packing, Deterministic) {
 
 TEST(Packing, SquarePocketStartsInACorner) {
   const Region region({{0, 0}, {100, 0}, {100, 100}, {0, 100}}, {});
-  const auto d = packMaxHoleDegree(region, {10}, {1.0, 0.0});
+  const auto d = packMaxHoleDegree(region, {10}, packing(1.0, 0.0));
   ASSERT_FALSE(d.empty());
   EXPECT_NEAR(d[0].center.x, 10, 1e-9);  // gold corner first
   EXPECT_NEAR(d[0].center.y, 10, 1e-9);
@@ -245,6 +253,6 @@ TEST(Packing, RejectsBadOptions) {
   const Region region({{0, 0}, {10, 0}, {10, 10}}, {});
   EXPECT_THROW(packMaxHoleDegree(region, {0.0}), Error);
   EXPECT_THROW(packMaxHoleDegree(region, {NAN}), Error);
-  EXPECT_THROW(packMaxHoleDegree(region, {1}, {0.0, 0.0}), Error);
-  EXPECT_THROW(packMaxHoleDegree(region, {1}, {0.86, -1.0}), Error);
+  EXPECT_THROW(packMaxHoleDegree(region, {1}, packing(0.0, 0.0)), Error);
+  EXPECT_THROW(packMaxHoleDegree(region, {1}, packing(0.86, -1.0)), Error);
 }

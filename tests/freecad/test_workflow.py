@@ -138,3 +138,30 @@ def test_summary_warnings_speak_freecad(doc):
     op.touch()
     doc.recompute()
     assert "grbl" not in op.Summary
+
+
+def test_planning_reports_progress_and_can_be_aborted(doc, monkeypatch):
+    """The plan runs under FreeCAD's progress indicator (the status bar in the
+    GUI); when the user aborts it (Esc), the operation says so and cuts nothing."""
+    calls = []
+
+    class Indicator:
+        def start(self, text, steps):
+            calls.append(text)
+
+        def next(self, can_abort=False):
+            calls.append("next")
+            if len(calls) > 3:
+                raise FreeCAD.Base.FreeCADAbort("Aborting...")
+
+        def stop(self):
+            calls.append("stop")
+
+    job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
+    assert PlungeRough.plan_of(op)
+    monkeypatch.setattr(FreeCAD.Base, "ProgressIndicator", Indicator)
+    op.touch()
+    doc.recompute()
+    assert calls[0].startswith(op.Label + ": checking the pocket") and calls[-1] == "stop"
+    assert op.Summary == "planning cancelled"
+    assert not [c for c in op.Path.Commands if c.Name in ("G1", "G81", "G83")]

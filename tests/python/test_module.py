@@ -114,3 +114,52 @@ def test_plan_sequencing_option(plunge):
     data["sequencing"] = "ants"
     with pytest.raises(ValueError, match="sequencing"):
         plunge.plan(data)
+
+
+def test_progress_is_reported_and_the_plan_unchanged(plunge):
+    seen = []
+    data = load("islands")
+    plan = plunge.plan(data, progress=lambda f, stage: seen.append((f, stage)))
+    assert len(seen) >= 3 and seen[0] == (0.0, "checking the pocket")
+    assert all(a[0] <= b[0] for a, b in zip(seen, seen[1:])) and seen[-1][0] <= 1.0
+    assert plan["plunges"] == plunge.plan(data)["plunges"]
+
+
+def test_progress_cancels(plunge):
+    calls = []
+
+    def stop(fraction, stage):
+        calls.append(fraction)
+        return False
+
+    with pytest.raises(ValueError, match="planning cancelled"):
+        plunge.plan(load("islands"), progress=stop)
+    assert len(calls) == 1
+    with pytest.raises(ValueError, match="progress: expected a callable"):
+        plunge.plan(load("islands"), progress=3)
+
+
+def test_progress_exception_goes_through(plunge):
+    class Stop(Exception):
+        pass
+
+    def boom(fraction, stage):
+        raise Stop()
+
+    with pytest.raises(Stop):
+        plunge.plan(load("islands"), progress=boom)
+
+
+def test_ctrl_c_interrupts_a_long_plan(plunge):
+    """Ctrl+C (here simulated: the interpreter's SIGINT flag) stops planning with
+    KeyboardInterrupt, the GIL being released meanwhile."""
+    import _thread
+    import threading
+    timer = threading.Timer(0.2, _thread.interrupt_main)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            plunge.plan(load("benchmark"))
+            plunge.plan(load("benchmark"))  # in case the first ended before the timer
+    finally:
+        timer.cancel()

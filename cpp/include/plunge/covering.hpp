@@ -12,6 +12,7 @@
 //    walls until the coverage target is met. The thesis stops at 84-93 %.
 // 3. Pruning: plunges whose disk the others already cover are dropped.
 #pragma once
+#include "plunge/progress.hpp"
 #include <vector>
 
 #include "plunge/geometry.hpp"
@@ -34,6 +35,7 @@ struct CoveringOptions {
   // Stop covering material attached to the walls once this fraction of the
   // accessible region is covered (free-standing pins are always covered).
   double minCoverage = 0.996;
+  Progress progress;  // checked per plunge placed
 };
 
 // The region shrunk by the allowance (what may be cut at all).

@@ -7,6 +7,7 @@
 // else: the material the grids miss near free-form walls stays (the discrete
 // pocket modelling paper's point, and what packing is measured against).
 #pragma once
+#include "plunge/progress.hpp"
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@ struct GridOptions {
   double allowance = 0.0;
   // A smaller tool plunges where it cuts at least this fraction of its disk.
   double minGain = 0.05;
+  Progress progress;  // checked per grid row
 };
 
 // radii: tool radii (any order). Same result type as the covering.

@@ -7,6 +7,7 @@
 // the corner placements are kept as a candidate set updated incrementally when
 // a circle is placed, with R-trees for the feasibility and hole-degree queries.
 #pragma once
+#include "plunge/progress.hpp"
 #include <vector>
 
 #include "plunge/geometry.hpp"
@@ -42,6 +43,7 @@ struct PackingOptions {
   // Radial allowance: every disk keeps radius + allowance from the walls.
   double allowance = 0.0;
   PackingOrder order = PackingOrder::HoleDegree;
+  Progress progress;  // checked per placement: a cancelled plan stops here
 };
 
 

@@ -8,6 +8,7 @@
 
 #include "plunge/depth.hpp"
 #include "plunge/geometry.hpp"
+#include "plunge/progress.hpp"
 #include "plunge/region.hpp"
 #include "plunge/selection.hpp"
 
@@ -100,6 +101,7 @@ struct Plan {
 // Checks every number and option of the input; throws plunge::Error naming the problem.
 void validate(PlanInput& input);
 
-Plan plan(PlanInput input);
+// progress: told how far planning got, and able to cancel it (progress.hpp).
+Plan plan(PlanInput input, const Progress& progress = Progress());
 
 }  // namespace plunge

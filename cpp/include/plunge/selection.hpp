@@ -14,6 +14,7 @@
 // 5.5 sub-regions ordered by a minimum spanning tree (reported; the plunges of
 //     each tool are then toured over the whole pocket, which is never longer).
 #pragma once
+#include "plunge/progress.hpp"
 #include <string>
 #include <vector>
 
@@ -63,6 +64,6 @@ struct ToolSelection {
 };
 
 // Plans with the tool set chosen from input.library; the plan carries the selection.
-Plan planWithToolSelection(const PlanInput& input);
+Plan planWithToolSelection(const PlanInput& input, const Progress& progress = Progress());
 
 }  // namespace plunge

@@ -1,0 +1,60 @@
+// Progress and cancellation of a long plan: a callback told how far planning
+// got, able to stop it; and a flag any worker thread checks cheaply.
+#pragma once
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "plunge/error.hpp"
+
+namespace plunge {
+
+// Thrown where a cancelled plan stops; a plunge::Error, so every front end
+// reports it as it reports bad input ("planning cancelled").
+class Cancelled : public Error {
+ public:
+  Cancelled() : Error("planning cancelled") {}
+};
+
+class Progress {
+ public:
+  // fraction in [0, 1] and what is being done; return false to cancel.
+  using Callback = std::function<bool(double fraction, const std::string& stage)>;
+
+  Progress() = default;
+  // The callback runs only on the thread that made this object (the caller's:
+  // Python and FreeCAD need that), at most every `interval`.
+  explicit Progress(Callback callback, std::chrono::milliseconds interval = std::chrono::milliseconds(100));
+
+  // A stage from `fraction` on: always reported to the callback.
+  void stage(double fraction, const std::string& name) const;
+  // From inside a long loop, on any thread: throws Cancelled once cancelled;
+  // on the caller's thread also reports (the stage's fraction, or `fraction`)
+  // when the interval has passed.
+  void tick(double fraction = -1.0) const;
+  // Cancels from any thread (the callback returning false or throwing does too).
+  void cancel() const { state_->cancelled = true; }
+  bool cancelled() const { return state_->cancelled; }
+  // The same callback and flag, with fractions [0, 1] mapped into [lo, hi] of this one.
+  Progress sub(double lo, double hi) const;
+
+ private:
+  struct State {
+    Callback callback;
+    std::chrono::milliseconds interval{100};
+    std::thread::id owner;
+    std::atomic<bool> cancelled{false};
+    std::chrono::steady_clock::time_point last;
+    double fraction = 0.0;
+    std::string stage;
+  };
+  void report(double fraction, bool force) const;
+
+  std::shared_ptr<State> state_ = std::make_shared<State>();
+  double lo_ = 0.0, hi_ = 1.0;
+};
+
+}  // namespace plunge

@@ -1,0 +1,124 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "plunge/io.hpp"
+#include "plunge/plan.hpp"
+#include "plunge/progress.hpp"
+#include "testutil.hpp"
+
+using namespace plunge;
+
+namespace {
+
+PlanInput shape(const std::string& name) { return planInputFromJson(test::readData("shapes/" + name + ".json")); }
+
+struct Seen {
+  std::vector<double> fractions;
+  std::vector<std::string> stages;
+  std::thread::id thread;
+  bool otherThread = false;
+};
+
+Progress recorder(Seen& seen, bool go = true) {
+  seen.thread = std::this_thread::get_id();
+  return Progress(
+      [&seen, go](double f, const std::string& s) {
+        seen.fractions.push_back(f);
+        seen.stages.push_back(s);
+        seen.otherThread = seen.otherThread || std::this_thread::get_id() != seen.thread;
+        return go;
+      },
+      std::chrono::milliseconds(0));
+}
+
+}  // namespace
+
+// Reported from the caller's thread only (both packing orders run in parallel),
+// in order, through every stage; the plan is the one made without progress.
+TEST(Progress, ReportsEveryStageInOrderOnTheCallersThread) {
+  Seen seen;
+  const Plan with = plan(shape("islands"), recorder(seen));
+  const Plan without = plan(shape("islands"));
+  ASSERT_GE(seen.fractions.size(), 4u);
+  EXPECT_FALSE(seen.otherThread);
+  for (size_t i = 1; i < seen.fractions.size(); ++i) EXPECT_GE(seen.fractions[i], seen.fractions[i - 1]);
+  EXPECT_EQ(seen.fractions.front(), 0.0);
+  EXPECT_GT(seen.fractions.back(), 0.8);
+  EXPECT_LE(seen.fractions.back(), 1.0);
+  for (const char* s : {"checking the pocket", "packing and covering", "ordering the plunges and their depths"})
+    EXPECT_NE(std::find(seen.stages.begin(), seen.stages.end(), s), seen.stages.end()) << s;
+  ASSERT_EQ(with.plunges.size(), without.plunges.size());
+  for (size_t i = 0; i < with.plunges.size(); ++i) {
+    EXPECT_EQ(with.plunges[i].x, without.plunges[i].x);
+    EXPECT_EQ(with.plunges[i].y, without.plunges[i].y);
+    EXPECT_EQ(with.plunges[i].z, without.plunges[i].z);
+  }
+}
+
+// The callback saying no stops the plan with Cancelled, a plunge::Error.
+TEST(Progress, CallbackCancels) {
+  Seen seen;
+  EXPECT_THROW(plan(shape("islands"), recorder(seen, false)), Cancelled);
+  EXPECT_EQ(seen.fractions.size(), 1u);  // nothing more was asked after "no"
+  try {
+    plan(shape("convex"), recorder(seen, false));
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "planning cancelled");
+  }
+}
+
+// Cancelled from another thread (a GUI's cancel button) in the middle of packing.
+TEST(Progress, CancelFromAnotherThread) {
+  std::atomic<int> calls{0};
+  Progress progress([&](double, const std::string&) { return ++calls < 1000000; }, std::chrono::milliseconds(0));
+  std::thread canceller([&] {
+    while (calls < 3) std::this_thread::yield();
+    progress.cancel();
+  });
+  EXPECT_THROW(plan(shape("benchmark"), progress), Cancelled);
+  canceller.join();
+  EXPECT_TRUE(progress.cancelled());
+}
+
+// An exception from the callback (Python's KeyboardInterrupt) goes through as it is.
+TEST(Progress, CallbackExceptionPropagates) {
+  int calls = 0;
+  Progress progress(
+      [&](double, const std::string&) -> bool {
+        if (++calls == 4) throw std::runtime_error("interrupted");  // while both packing orders run
+        return true;
+      },
+      std::chrono::milliseconds(0));
+  EXPECT_THROW(plan(shape("benchmark"), progress), std::runtime_error);
+  EXPECT_EQ(calls, 4);
+  EXPECT_TRUE(progress.cancelled());  // the other packing thread stopped too
+}
+
+TEST(Progress, SubRangesMapFractions) {
+  std::vector<double> got;
+  Progress p([&](double f, const std::string&) { got.push_back(f); return true; }, std::chrono::milliseconds(0));
+  const Progress half = p.sub(0.5, 1.0);
+  half.stage(0.0, "a");
+  half.stage(0.5, "b");
+  half.sub(0.5, 1.0).stage(1.0, "c");
+  EXPECT_EQ(got, (std::vector<double>{0.5, 0.75, 1.0}));
+}
+
+// Automatic tool choice plans several tool sets: one progress over all of them.
+TEST(Progress, ToolSelectionStaysInRange) {
+  PlanInput in = shape("neck");
+  in.autoTools = true;
+  in.library = {{32, 1}, {20, 2}, {12, 3}, {6, 4}};
+  in.tools.clear();
+  Seen seen;
+  plan(in, recorder(seen));
+  ASSERT_FALSE(seen.fractions.empty());
+  for (size_t i = 1; i < seen.fractions.size(); ++i) EXPECT_GE(seen.fractions[i], seen.fractions[i - 1] - 1e-12);
+  EXPECT_LE(seen.fractions.back(), 1.0);
+}
