@@ -34,7 +34,7 @@ from PySide import QtCore, QtGui  # noqa: E402
 result = {"ok": False, "steps": []}
 # FreeCAD's "Choose a Tool Controller" dialog should not appear; if it does, it
 # is answered with this tool controller and recorded.
-answer = {"tc": None}
+answer = {"tc": None, "files": None}
 
 
 def save():
@@ -43,8 +43,11 @@ def save():
 
 
 def step(name):
-    # Written after every step so a hang shows how far the GUI got.
+    # Written after every step so a hang shows how far the GUI got; with the
+    # report view's errors so far, so that each can be traced to its step.
     result["steps"].append(name)
+    report_errors()
+    result.setdefault("errors_by_step", {})[name] = len(result["report"])
     save()
     QtGui.QApplication.processEvents()
 
@@ -54,7 +57,14 @@ def watch_dialogs():
     and let the test fail on it instead of timing out."""
     w = QtGui.QApplication.activeModalWidget()
     combo = w.findChild(QtGui.QComboBox, "uiToolController") if w is not None else None
-    if combo is not None and answer["tc"]:  # FreeCAD's "Choose a Tool Controller"
+    if isinstance(w, QtGui.QFileDialog) and answer["files"]:  # pick files, as the user does
+        folder, names = answer["files"]
+        answer["files"] = None
+        w.setDirectory(folder)
+        w.findChild(QtGui.QLineEdit).setText(" ".join('"%s"' % n for n in names))
+        result.setdefault("file_dialogs", []).append(w.windowTitle())
+        w.accept()
+    elif combo is not None and answer["tc"]:  # FreeCAD's "Choose a Tool Controller"
         combo.setCurrentIndex(combo.findText(answer["tc"]))
         result["chose"] = combo.currentText()
         w.accept()
@@ -271,11 +281,23 @@ def new_job():
     step("command greyed without a Job")
 
     job = compat.job_gui().Create([part], openTaskPanel=False)
-    tcs = [example_part.add_tool_controller(job, d, n, os.path.join(OUT, "bits")) for d, n in ((20, 2), (12, 3), (6, 4))]
     doc.recompute()
-    # The Job's own panel, with this addon registered on its setup sheet: open, OK.
+    # The Job's own panel (with this addon registered on its setup sheet): the
+    # plungers from their tool bit files through the Tools tab's Add button and
+    # FreeCAD's file dialog, then OK.
+    bits = os.path.join(OUT, "bits")
+    files = [os.path.basename(example_part.write_tool_bit(d, bits)) for d in (20, 12, 6)]
     FreeCADGui.ActiveDocument.setEdit(job.Name)
     wait(1)
+    answer["files"] = (bits, files)
+    job.ViewObject.Proxy.taskPanel.form.findChild(QtGui.QPushButton, "toolControllerAdd").click()
+    wait(1)
+    tcs = sorted([tc for tc in job.Tools.Group if tc.Tool.File.endswith("_Plunger.fctb")],
+                 key=lambda tc: -float(tc.Tool.Diameter))
+    result["added_tool_controllers"] = [(tc.Label, int(tc.ToolNumber)) for tc in tcs]
+    for tc in tcs:  # the feeds, as in each tool controller's own panel
+        tc.VertFeed = "150 mm/min"
+        tc.HorizFeed = "600 mm/min"
     screenshot("job_panel.png")
     click_task_button("OK")
     wait(1)
@@ -329,7 +351,7 @@ def new_job():
     page = op.ViewObject.Proxy.panel.featurePages[-1]
     for i in range(page.form.toolControllers.count()):
         item = page.form.toolControllers.item(i)
-        if item.text().startswith("T4 "):
+        if "6 mm plunger" in item.text():
             item.setCheckState(QtCore.Qt.Unchecked)
     wait(0.5)
     click_task_button("Cancel")
@@ -339,13 +361,13 @@ def new_job():
                               "operations": [o.Label for o in job.Operations.Group]}
     step("cancel after changing the plungers")
 
-    # Undo the panel's changes and the creation, then redo both.
-    FreeCADGui.runCommand("Std_Undo")
+    # Ctrl+Z undoes the operation's creation (with its panel's changes) whole;
+    # Ctrl+Y brings it back.
+    result["undo_name"] = doc.UndoNames[0] if doc.UndoNames else None
     FreeCADGui.runCommand("Std_Undo")
     doc.recompute()
     result["after_undo"] = {"plunge_objects": [o.Name for o in doc.Objects if o.Name.startswith("PlungeRough")],
                             "operations": [o.Name for o in job.Operations.Group]}
-    FreeCADGui.runCommand("Std_Redo")
     FreeCADGui.runCommand("Std_Redo")
     doc.recompute()
     op = doc.getObject("PlungeRough")

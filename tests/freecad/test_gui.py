@@ -115,6 +115,9 @@ def test_command_in_the_workbench(result):
 def test_new_operation_from_the_toolbar(result):
     assert "chose" not in result  # FreeCAD did not need to ask: the largest plunger is the op's own
     assert result["job_panel_closed"]
+    # Added in the Job panel's Tools tab from .fctb files through FreeCAD's file dialog.
+    assert len(result["file_dialogs"]) == 1
+    assert [label.split(" plunger")[0] for label, _ in result["added_tool_controllers"]] == ["20 mm", "12 mm", "6 mm"]
     assert [checked for _, checked in result["plunger_list"]] == [True, True, True]  # no default 5 mm tool
     assert result["base"] and result["base"][0].startswith("Face")
     assert [d for _, d, _ in result["operations"]] == [20, 12, 6]
@@ -129,6 +132,7 @@ def test_new_operation_from_the_toolbar(result):
 def test_cancel_undo_and_delete(result):
     cancel = result["after_cancel"]
     assert cancel["same_objects"] and cancel["plungers"] == [20, 12, 6]
+    assert result["undo_name"] == "Create Plunge Rough"
     assert result["after_undo"] == {"plunge_objects": [], "operations": []}
     assert len(result["after_redo"]["operations"]) == 3 and result["after_redo"]["plunges"] > 0
     deleted = result["after_companion_delete"]
