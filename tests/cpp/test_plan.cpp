@@ -57,13 +57,7 @@ TEST(Plan, OrderDepthAndStats) {
 }
 
 TEST(Plan, SameInputSamePlan) {
-  const Plan a = plan(square()), b = plan(square());
-  ASSERT_EQ(a.plunges.size(), b.plunges.size());
-  for (size_t i = 0; i < a.plunges.size(); ++i) {
-    EXPECT_EQ(a.plunges[i].x, b.plunges[i].x);
-    EXPECT_EQ(a.plunges[i].y, b.plunges[i].y);
-    EXPECT_EQ(a.plunges[i].toolId, b.plunges[i].toolId);
-  }
+  test::expectSamePlunges(plan(square()), plan(square()));
 }
 
 TEST(Plan, RejectsBadNumbers) {

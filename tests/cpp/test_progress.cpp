@@ -53,12 +53,7 @@ TEST(Progress, ReportsEveryStageInOrderOnTheCallersThread) {
   EXPECT_LE(seen.fractions.back(), 1.0);
   for (const char* s : {"checking the pocket", "packing and covering", "ordering the plunges and their depths"})
     EXPECT_NE(std::find(seen.stages.begin(), seen.stages.end(), s), seen.stages.end()) << s;
-  ASSERT_EQ(with.plunges.size(), without.plunges.size());
-  for (size_t i = 0; i < with.plunges.size(); ++i) {
-    EXPECT_EQ(with.plunges[i].x, without.plunges[i].x);
-    EXPECT_EQ(with.plunges[i].y, without.plunges[i].y);
-    EXPECT_EQ(with.plunges[i].z, without.plunges[i].z);
-  }
+  test::expectSamePlunges(with, without);
 }
 
 // The callback saying no stops the plan with Cancelled, a plunge::Error.

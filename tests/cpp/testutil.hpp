@@ -6,7 +6,10 @@
 #include <sstream>
 #include <string>
 
+#include <gtest/gtest.h>
+
 #include "plunge/geometry.hpp"
+#include "plunge/plan.hpp"
 #include "plunge/region.hpp"
 
 namespace plunge::test {
@@ -53,6 +56,17 @@ inline std::string readData(const std::string& rel) {
   std::stringstream s;
   s << f.rdbuf();
   return s.str();
+}
+
+// The same plunges, in the same order, bit for bit (determinism).
+inline void expectSamePlunges(const Plan& a, const Plan& b) {
+  ASSERT_EQ(a.plunges.size(), b.plunges.size());
+  for (size_t i = 0; i < a.plunges.size(); ++i) {
+    EXPECT_EQ(a.plunges[i].x, b.plunges[i].x);
+    EXPECT_EQ(a.plunges[i].y, b.plunges[i].y);
+    EXPECT_EQ(a.plunges[i].z, b.plunges[i].z);
+    EXPECT_EQ(a.plunges[i].toolId, b.plunges[i].toolId);
+  }
 }
 
 }  // namespace plunge::test
