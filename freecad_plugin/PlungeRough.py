@@ -484,14 +484,6 @@ def _active_job():
     return jobs[0] if len(jobs) == 1 else None
 
 
-def CreateCompanion(name, obj=None, parentJob=None):
-    """A companion operation (normally made by syncCompanions)."""
-    if obj is None:
-        obj = FreeCAD.ActiveDocument.addObject("Path::FeaturePython", name)
-    obj.Proxy = ObjectPlungeRoughTool(obj, name, parentJob)
-    return obj
-
-
 def Create(name, obj=None, parentJob=None):
     """Create(name) ... a Plunge Rough operation, as FreeCAD's own operations do."""
     if obj is None:

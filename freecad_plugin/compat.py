@@ -68,13 +68,6 @@ def job_gui():
     return _first("Path.Main.Gui.Job", "PathScripts.PathJobGui")
 
 
-def find_tool_bit(name):
-    """A tool bit file (.fctb) shipped with FreeCAD or in the user's tool folders,
-    found the way FreeCAD finds them (Mod/Path/Tools/Bit in 0.20, Mod/CAM/Tools/Bit
-    in 1.0, plus the preferences' search paths); None if there is none."""
-    return PathToolBit.findToolBit(name)
-
-
 def voxel_simulator():
     """FreeCAD's voxel (height map) simulator, PathSimulator.PathSim: the engine
     behind the GUI's Path simulator in 0.20 and its legacy simulator in 1.0.

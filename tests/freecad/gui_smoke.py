@@ -174,7 +174,7 @@ def heights(mesh_objects, points, top):
 
 def example_document():
     """Phase 1: the shipped example."""
-    from freecad_plugin import PlungeRough, PlungeRoughGui, compat
+    from freecad_plugin import PlungeRough, compat
     doc = FreeCAD.openDocument(os.environ["PLUNGE_EXAMPLE_DOC"])
     FreeCADGui.ActiveDocument.ActiveView.viewIsometric()
     FreeCADGui.activateWorkbench(compat.workbench_name())
@@ -269,7 +269,6 @@ def new_job():
     """Phase 2: a new Job, as a user makes one."""
     import example_part
     from freecad_plugin import PlungeRough, compat
-    mw = FreeCADGui.getMainWindow()
     doc = FreeCAD.newDocument("PlungeNew")
     part = doc.addObject("Part::Feature", "Part")
     part.Shape = example_part.freeform_part(True)

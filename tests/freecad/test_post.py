@@ -1,7 +1,4 @@
 """Posting a job with Plunge Rough: the G-code parsed back must be the plan."""
-import json
-import os
-
 import pytest
 
 import parts

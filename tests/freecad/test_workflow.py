@@ -107,7 +107,7 @@ def test_undo_creation_undoes_everything(doc):
     doc.recompute()
     before = [o.Name for o in doc.Objects]
     doc.openTransaction("Create Plunge Rough")
-    op = PlungeRough.Create("PlungeRough", parentJob=job)
+    PlungeRough.Create("PlungeRough", parentJob=job)
     doc.commitTransaction()
     doc.recompute()
     assert len(job.Operations.Group) == 2
