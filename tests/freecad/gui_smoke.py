@@ -260,6 +260,8 @@ def play_gl_simulator():
             click(w, QtCore.QPointF(x, w.height() - 34))
     wait(110)  # x40: the whole job, about a minute and a half under xvfb
     screenshot("example_gl_simulator.png")
+    for w in windows:  # its window stays when the panel closes: the user closes it
+        w.close()
     FreeCADGui.Control.closeDialog()
     wait(1)
     step("example: OpenGL CAM simulator played")

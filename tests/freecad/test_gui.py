@@ -27,6 +27,9 @@ def run_gui(script, env, timeout):
 def out():
     path = os.path.join(BUILD, "test-artifacts")
     os.makedirs(path, exist_ok=True)
+    for name in os.listdir(path):  # no picture from an earlier run left to mislead
+        if name.endswith(".png"):
+            os.remove(os.path.join(path, name))
     return path
 
 
