@@ -28,6 +28,8 @@ namespace {
 // instead of leaving a sliver that joins every cusp along the wall.
 constexpr double kDiskChord = 0.005;
 constexpr double kTol = 1e-9;
+constexpr double kCoreOutlineTolerance = 0.01;  // mm, see coreRegion
+constexpr double kBandMargin = 0.05;             // mm, see Coverer::run
 
 using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
 using BBox = bg::model::box<BPoint>;
@@ -155,6 +157,16 @@ Polygons accessibleRegion(const Region& region, double minRadius, double allowan
   return clip::toPolygons(clip::offset(eroded, minRadius));
 }
 
+Polygons coreRegion(const Region& region, const Polygons& accessible, double allowance, double band) {
+  const clip::Paths inner = clip::offset(clip::toPaths(region.polygons()), -(allowance + band));
+  if (inner.empty()) return {};
+  // Not the last hundredth of a millimetre of the accessible outline: there the
+  // outline's polygon and the disks' polygons differ by their chord errors, in
+  // corners the smallest tool just reaches.
+  const clip::Paths reach = clip::offset(clip::toPaths(accessible), -kCoreOutlineTolerance);
+  return clip::toPolygons(clip::boolean(reach, inner, ClipperLib::ctIntersection));
+}
+
 Polygons uncoveredRegion(const Polygons& area, const std::vector<Circle>& disks) {
   return clip::toPolygons(subtractDisks(clip::toPaths(area), disks, false));
 }
@@ -221,7 +233,10 @@ class Coverer {
     std::stable_sort(sorted_.begin(), sorted_.end(), [&](int a, int b) { return radii[a] < radii[b]; });
     rMin_ = radii[sorted_.front()];
     rMax_ = radii[sorted_.back()];
-    crumb_ = 0.01 * rMin_ * rMin_;
+    // With a band the core is covered whole: only slivers of the polygon
+    // approximation (under 0.01 mm^2 measured) may stay.
+    core_ = opt.wallStock > 0.0;
+    crumb_ = core_ ? 0.004 : 0.01 * rMin_ * rMin_;
   }
 
   CoverResult run(const std::vector<PackedDisk>& packed) {
@@ -235,7 +250,19 @@ class Coverer {
       result_.disks.push_back({d.center, d.radius, d.tool, Stage::Packing});
       circles.push_back({d.center, d.radius});
     }
-    const clip::Paths left = subtractDisks(accessible_, circles, true);
+    Polygons core;
+    clip::Paths toCover = accessible_;
+    if (core_) {
+      core = coreRegion(region_, acc, opt_.allowance, opt_.wallStock);
+      result_.coreArea = poly::area(core);
+      // Planned with a slightly wider core: the slivers the greedy leaves (under
+      // its crumb) then lie inside the band, and so do the scallops' tips.
+      const double margin = std::min(kBandMargin, 0.1 * opt_.wallStock);
+      toCover = clip::toPaths(coreRegion(region_, acc, opt_.allowance, opt_.wallStock - margin));
+    }
+    // With a band, disks are inscribed polygons in planning too: what the
+    // planner counts as cut is cut, so no sliver of the core survives the real disks.
+    const clip::Paths left = core_ ? subtractDisks(toCover, circles, false) : subtractDisks(accessible_, circles, true);
     for (clip::Paths& c : clip::components(left)) addPiece(std::move(c));
 
     coverDelaunayGaps(packed);
@@ -246,6 +273,15 @@ class Coverer {
     }
     // The greedy counts with circumscribed disks; the measurement is conservative.
     // Where the two disagree about the target, cover a little more.
+    if (core_) {
+      coverResidual(0.0);
+      std::vector<Circle> all;
+      for (const CoverDisk& d : result_.disks) all.push_back({d.center, d.radius});
+      result_.uncovered = uncoveredRegion(acc, all);
+      result_.coveredArea = result_.accessibleArea - poly::area(result_.uncovered);
+      result_.coreUncovered = uncoveredRegion(core, all);
+      return std::move(result_);
+    }
     double target = opt_.minCoverage * result_.accessibleArea;
     for (int round = 0;; ++round) {
       coverResidual(target);
@@ -315,7 +351,7 @@ class Coverer {
     p.area = clip::area(poly);
     if (p.area <= 0.0) return;
     clip::bounds(poly, p.lo, p.hi);
-    p.pin = !touchesBoundary(poly);
+    p.pin = core_ || !touchesBoundary(poly);
     p.alive = true;
     p.poly = std::move(poly);
     uncovered_ += p.area;
@@ -345,7 +381,7 @@ class Coverer {
   void addDisk(Vec2 c, int tool, Stage stage) {
     const double r = radii_[tool];
     result_.disks.push_back({c, r, tool, stage});
-    const clip::Paths disk{clip::diskPath({c, r}, kDiskChord, true)};
+    const clip::Paths disk{clip::diskPath({c, r}, kDiskChord, !core_)};
     for (int id : piecesNear({c.x - r, c.y - r}, {c.x + r, c.y + r})) {
       clip::Paths rest = clip::boolean(pieces_[id].poly, disk, ClipperLib::ctDifference);
       if (clip::area(rest) >= pieces_[id].area) continue;  // untouched: keep it and its candidates
@@ -529,16 +565,45 @@ class Coverer {
 
     for (const Vec2& a : anchors)
       for (int t : sorted_) {
+        std::vector<Vec2> centres;
         Vec2 c;
-        if (!feasibleNear(a, radii_[t], c)) continue;
-        // Lazy greedy: queue an upper bound of the gain, evaluate it when it comes up.
-        const double r = radii_[t];
-        double bound = 0.0;
-        for (int o : piecesNear({c.x - r, c.y - r}, {c.x + r, c.y + r})) bound += pieces_[o].area;
-        bound = std::min(bound, M_PI * r * r);
-        if (bound < 0.5 * crumb_) continue;
-        (p.pin ? pinQueue_ : wallQueue_).push({bound, seq_++, c, t, id});
+        if (feasibleNear(a, radii_[t], c)) centres.push_back(c);
+        // A small piece of the core in a corner the tool only just reaches: the
+        // corner placements themselves (the push off one wall lands beside them).
+        if (core_ && p.area < radii_[t] * radii_[t]) cornerPlacementsNear(a, radii_[t], centres);
+        for (const Vec2& x : centres) queueCandidate(x, t, id);
       }
+  }
+
+  void cornerPlacementsNear(Vec2 a, double r, std::vector<Vec2>& out) const {
+    const double c = r + opt_.allowance;
+    const std::vector<int> near = region_.wallsNear(a, c + r);
+    const std::vector<int> reflex = region_.reflexVerticesNear(a, c + r);
+    std::vector<Vec2> pts;
+    for (size_t i = 0; i < near.size(); ++i) {
+      const Segment& w = region_.walls()[near[i]];
+      for (size_t j = i + 1; j < near.size(); ++j)
+        for (const Vec2& p : cornerPlacementsWallWall(w, region_.walls()[near[j]], c)) pts.push_back(p);
+      for (int v : reflex)
+        for (const Vec2& p : cornerPlacementsWallCircle(w, c, {region_.vertices()[v].p, c})) pts.push_back(p);
+    }
+    for (size_t i = 0; i < reflex.size(); ++i)
+      for (size_t j = i + 1; j < reflex.size(); ++j)
+        for (const Vec2& p : cornerPlacementsCircleCircle({region_.vertices()[reflex[i]].p, c},
+                                                          {region_.vertices()[reflex[j]].p, c}))
+          pts.push_back(p);
+    for (const Vec2& p : pts)
+      if (dist(p, a) <= r && region_.diskFits(p, c)) out.push_back(p);
+  }
+
+  // Lazy greedy: queue an upper bound of the gain, evaluated when it comes up.
+  void queueCandidate(Vec2 c, int t, int id) {
+    const double r = radii_[t];
+    double bound = 0.0;
+    for (int o : piecesNear({c.x - r, c.y - r}, {c.x + r, c.y + r})) bound += pieces_[o].area;
+    bound = std::min(bound, M_PI * r * r);
+    if (bound < 0.5 * crumb_) return;
+    (pieces_[id].pin ? pinQueue_ : wallQueue_).push({bound, seq_++, c, t, id});
   }
 
   void coverResidual(double target) {
@@ -574,6 +639,7 @@ class Coverer {
   CoveringOptions opt_;
   std::vector<int> sorted_;  // tool indices by increasing radius
   double rMin_ = 0, rMax_ = 0, crumb_ = 0;
+  bool core_ = false;  // a wall band: cover the core whole (CoveringOptions::wallStock)
   clip::Paths accessible_;
   std::vector<Segment> boundary_;
   bgi::rtree<BoxValue, bgi::rstar<16>> boundaryIndex_;
@@ -594,6 +660,7 @@ CoverResult coverRegion(const Region& region, const std::vector<double>& radii,
   if (radii.empty()) throw Error("no tools given");
   if (!(options.minCoverage > 0.0 && options.minCoverage <= 1.0))
     throw Error("minimum coverage must be in (0, 1]");
+  if (!(options.wallStock >= 0.0) || !std::isfinite(options.wallStock)) throw Error("wall band must be >= 0");
   Coverer c(region, radii, options);
   return c.run(packed);
 }

@@ -101,7 +101,7 @@ PlanInput planInputFromJson(const std::string& text) {
   onlyKeys(j,
            {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",
             "min_coverage", "contact_ratio", "packing_order", "sequencing", "start", "tool_library", "selection",
-            "time_model", "grid"},
+            "time_model", "grid", "max_wall_stock", "max_floor_stock"},
            "input: ");
   PlanInput in;
   if (j.contains("version") && !(j["version"].is_number_integer() && j["version"].get<long long>() == 1))
@@ -158,6 +158,8 @@ PlanInput planInputFromJson(const std::string& text) {
     in.seed = j["seed"].get<std::uint64_t>();
   }
   if (j.contains("min_coverage")) in.minCoverage = number(j["min_coverage"], "min_coverage");
+  if (j.contains("max_wall_stock")) in.maxWallStock = number(j["max_wall_stock"], "max_wall_stock");
+  if (j.contains("max_floor_stock")) in.maxFloorStock = number(j["max_floor_stock"], "max_floor_stock");
   if (j.contains("contact_ratio")) in.contactRatio = number(j["contact_ratio"], "contact_ratio");
   if (j.contains("packing_order")) {
     if (!j["packing_order"].is_string()) throw Error("packing_order: expected a string");
@@ -212,7 +214,15 @@ std::string planToJson(const Plan& plan) {
                   {"travel_length", s.travelLength},
                   {"planning_seconds", s.planningSeconds},
                   {"hex_reference_count", s.hexReferenceCount},
-                  {"estimated_minutes", s.estimatedMinutes}};
+                  {"estimated_minutes", s.estimatedMinutes},
+                  {"core_area", s.coreArea},
+                  {"core_coverage", s.coreCoverage},
+                  {"max_wall_stock_left", s.maxWallStockLeft},
+                  {"max_floor_stock_left", s.maxFloorStockLeft},
+                  {"mean_floor_stock", s.meanFloorStock},
+                  {"volume_removed", s.volumeRemoved},
+                  {"volume_left", s.volumeLeft},
+                  {"rest_plunges", s.restPlunges}};
   if (!plan.warnings.empty()) out["warnings"] = plan.warnings;
   if (plan.selection) {
     const ToolSelection& sel = *plan.selection;

@@ -62,6 +62,22 @@ double contactDistance(const PackedDisk& a, const PackedDisk& b) {
   return a.contactRadius + b.contactRadius;
 }
 
+double wallRowSpacing(double r, double band) {
+  if (!(band > 0.0)) return 0.0;
+  const double h = std::min(band, r);
+  // 5 % closer than on a straight wall: on walls curving round the material
+  // (convex pockets, around islands) the scallops between row disks grow.
+  return 0.95 * 2.0 * std::sqrt(2.0 * r * h - h * h);
+}
+
+double wallRowInset(double r, double rho, double band) {
+  if (!(band > 0.0) || band >= r) return 0.0;
+  // Inner disks meet each other at 2 rho, so between two of them the cut reaches
+  // sqrt(r^2 - rho^2) below their centres; the row cuts everything up to r - band
+  // above its own centres. 2 % closer for curved walls and rounding.
+  return 0.98 * (r - band + std::sqrt(std::max(0.0, r * r - rho * rho)));
+}
+
 double holeDegree(double dMin, double r) { return 1.0 - std::clamp(dMin, 0.0, r) / r; }
 
 namespace {
@@ -87,6 +103,9 @@ class Packer {
     r_ = radius;
     c_ = radius + opt_.allowance;
     rho_ = radius * opt_.contactRatio;
+    // Wall rows: only where the band's chord is closer than the usual contact.
+    row_ = std::min(wallRowSpacing(radius, opt_.wallBand), 2 * rho_);
+    if (row_ >= 2 * rho_ - kTol) row_ = 0.0;
     proto_ = {{}, r_, rho_, tool_};
     cands_.clear();
     candIndex_.clear();
@@ -108,7 +127,16 @@ class Packer {
     Site g1, g2;
     double dMin;
     bool alive;
+    bool onWall;  // touches a wall: may meet the wall row's disks at the row spacing
   };
+
+  bool touchesWall(Vec2 p) const { return row_ > 0 && region_.wallDistance(p, c_ + 1e-6) <= c_ + 1e-6; }
+
+  // Centre distance at which a new disk (on a wall or not) meets disk k.
+  double need(int k, bool onWall) const {
+    if (row_ > 0 && onWall && onWall_[k] && disks[k].tool == tool_) return row_;
+    return contactDistance(disks[k], proto_);
+  }
   // Max hole degree first; ties by lowest y then x, so equal-degree placements grow
   // row by row; then creation order.
   using Key = std::tuple<long long, double, double, int>;
@@ -177,16 +205,14 @@ class Packer {
            dot(u, out.b - out.a) <= 1e-9 * nu * norm(out.b - out.a);
   }
 
-  bool disksClear(Vec2 p) const {
-    for (auto it = diskIndex_.qbegin(bgi::intersects(square(p, rho_ + maxReach_))); it != diskIndex_.qend(); ++it) {
-      const PackedDisk& d = disks[it->second];
-      if (dist(p, d.center) < contactDistance(d, proto_) - kTol) return false;
-    }
+  bool disksClear(Vec2 p, bool onWall) const {
+    for (auto it = diskIndex_.qbegin(bgi::intersects(square(p, rho_ + maxReach_))); it != diskIndex_.qend(); ++it)
+      if (dist(p, disks[it->second].center) < need(it->second, onWall) - kTol) return false;
     return true;
   }
 
-  bool feasible(Vec2 p) const {
-    return region_.wallDistance(p, c_) >= c_ - kTol && disksClear(p) && region_.contains(p);
+  bool feasible(Vec2 p, bool onWall) const {
+    return region_.wallDistance(p, c_) >= c_ - kTol && disksClear(p, onWall) && region_.contains(p);
   }
 
   Vec2 tangentPoint(const Site& s, Vec2 p) const {
@@ -195,7 +221,7 @@ class Packer {
   }
 
   // d_min of eq. 4.68: gap to the nearest item other than the two tangent ones.
-  double dMinOf(Vec2 p, const Site& g1, const Site& g2) const {
+  double dMinOf(Vec2 p, const Site& g1, const Site& g2, bool onWall) const {
     double best = r_;
     std::vector<Vec2> touch;
     for (const Site* g : {&g1, &g2})
@@ -213,16 +239,18 @@ class Packer {
     for (auto it = diskIndex_.qbegin(bgi::intersects(square(p, reach))); it != diskIndex_.qend(); ++it) {
       const int k = it->second;
       if ((g1.kind == Site::Disk && g1.index == k) || (g2.kind == Site::Disk && g2.index == k)) continue;
-      best = std::min(best, dist(p, disks[k].center) - contactDistance(disks[k], proto_));
+      best = std::min(best, dist(p, disks[k].center) - need(k, onWall));
     }
     return std::max(best, 0.0);
   }
 
   void addCandidate(Vec2 p, const Site& a, const Site& b) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) return;
-    if (!vertexConeOk(a, p) || !vertexConeOk(b, p) || !feasible(p)) return;
+    const bool onWall = touchesWall(p);
+    if (row_ > 0 && !onWall) return;  // a wall-row pass places rows only
+    if (!vertexConeOk(a, p) || !vertexConeOk(b, p) || !feasible(p, onWall)) return;
     const int id = static_cast<int>(cands_.size());
-    cands_.push_back({p, a, b, dMinOf(p, a, b), true});
+    cands_.push_back({p, a, b, dMinOf(p, a, b, onWall), true, onWall});
     candIndex_.insert({BPoint(p.x, p.y), id});
     queue_.insert(keyOf(id));
   }
@@ -230,12 +258,16 @@ class Packer {
   void addPair(const Site& a, const Site& b) {
     const auto& walls = region_.walls();
     std::vector<Vec2> pts;
+    const Site& w = a.kind == Site::Wall ? a : b;
+    const Site& o = a.kind == Site::Wall ? b : a;
     if (a.kind == Site::Wall && b.kind == Site::Wall)
       pts = cornerPlacementsWallWall(walls[a.index], walls[b.index], c_);
-    else if (a.kind == Site::Wall)
-      pts = cornerPlacementsWallCircle(walls[a.index], c_, locus(b));
-    else if (b.kind == Site::Wall)
-      pts = cornerPlacementsWallCircle(walls[b.index], c_, locus(a));
+    else if (w.kind == Site::Wall && o.kind == Site::Disk && row_ > 0 && onWall_[o.index] &&
+             disks[o.index].tool == tool_)
+      // The next disk of a wall row: on the wall, at the row spacing from a row disk.
+      pts = cornerPlacementsWallCircle(walls[w.index], c_, {disks[o.index].center, row_});
+    else if (w.kind == Site::Wall)
+      pts = cornerPlacementsWallCircle(walls[w.index], c_, locus(o));
     else
       pts = cornerPlacementsCircleCircle(locus(a), locus(b));
     for (const Vec2& p : pts) addCandidate(p, a, b);
@@ -288,6 +320,7 @@ class Packer {
     PackedDisk d = proto_;
     d.center = p;
     disks.push_back(d);
+    onWall_.push_back(touchesWall(p));
     diskIndex_.insert({BPoint(p.x, p.y), k});
     maxReach_ = std::max(maxReach_, r_);
     // Candidates now overlapping die; those nearby may see a smaller d_min.
@@ -296,7 +329,7 @@ class Packer {
     for (const PointValue& h : hits) {
       Candidate& c = cands_[h.second];
       if (!c.alive) continue;
-      const double gap = dist(c.p, p) - contactDistance(d, proto_);
+      const double gap = dist(c.p, p) - need(k, c.onWall);
       if (gap < -kTol) {
         queue_.erase(keyOf(h.second));
         c.alive = false;
@@ -314,6 +347,8 @@ class Packer {
   PackedDisk proto_;  // the circle of this phase
   int tool_ = 0;
   double r_ = 0, c_ = 0, rho_ = 0, maxReach_ = 0;  // maxReach_: largest radius placed
+  double row_ = 0;  // wall row spacing of this phase (0: no band)
+  std::vector<char> onWall_;  // per disk: it touches a wall
   bool hasLattice_ = false;  // anchored at the first circle of the largest tool
   Vec2 latOrigin_, latDir_;
   std::vector<Candidate> cands_;
@@ -323,6 +358,18 @@ class Packer {
 };
 
 }  // namespace
+
+std::vector<PackedDisk> packWithWallBand(const Region& region, double radius, const PackingOptions& options) {
+  if (!(options.wallBand > 0.0)) return packMaxHoleDegree(region, {radius}, options);
+  // The rows: a pass that only places disks touching the walls, at the band's chord.
+  std::vector<PackedDisk> disks = packMaxHoleDegree(region, {radius}, options);
+  // Inside them, the plain packing kept off the walls by the inset.
+  PackingOptions inner = options;
+  inner.wallBand = 0.0;
+  inner.allowance += wallRowInset(radius, radius * options.contactRatio, options.wallBand);
+  for (const PackedDisk& d : packMaxHoleDegree(region, {radius}, inner)) disks.push_back(d);
+  return disks;
+}
 
 std::vector<PackedDisk> packMaxHoleDegree(const Region& region, const std::vector<double>& radii,
                                           const PackingOptions& options) {

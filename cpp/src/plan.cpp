@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <future>
+#include <limits>
+#include <memory>
 #include <iomanip>
 #include <cmath>
 #include <set>
@@ -16,6 +18,7 @@
 #include "plunge/packing.hpp"
 #include "plunge/polygon.hpp"
 #include "plunge/sequencing.hpp"
+#include "plunge/stock.hpp"
 
 namespace plunge {
 
@@ -90,11 +93,207 @@ void validate(PlanInput& in) {
   requireFinite(in.contactRatio, "contact_ratio");
   if (!(in.contactRatio >= 0.5 && in.contactRatio <= 1.0)) throw Error("contact_ratio must be in [0.5, 1]");
   tourMethodFromName(in.sequencing);  // throws for an unknown method
+  requireFinite(in.maxWallStock, "max_wall_stock");
+  if (in.maxWallStock < 0.0) throw Error("max_wall_stock must be >= 0 (0: cover down to min_coverage)");
+  requireFinite(in.maxFloorStock, "max_floor_stock");
+  if (in.maxFloorStock < 0.0) throw Error("max_floor_stock must be >= 0 (0: no rest plunges)");
   if (in.start) {
     requireFinite(in.start->x, "start.x");
     requireFinite(in.start->y, "start.y");
   }
 }
+
+namespace {
+
+Cutter cutterOf(const Tool& t) {
+  return {t.shape, 0.5 * t.diameter, t.shape == CutterShape::Ball ? 0.5 * t.diameter : t.cornerRadius};
+}
+
+std::unique_ptr<FloorSurface> makeFloor(const PlanInput& in) {
+  if (in.floor.kind == Floor::Kind::Flat) return makeFlatFloor(in.floor.z);
+  if (in.floor.kind == Floor::Kind::Expression) return makeExpressionFloor(in.floor.expression);
+  const std::string& f = in.floor.brep;
+  return makeBrepFloor(f.front() == '/' || in.baseDir.empty() ? f : in.baseDir + "/" + f);
+}
+
+// Packing and covering, or the grid: the plunge positions of every tool.
+CoverResult placePlunges(const PlanInput& in, const Region& region, const std::vector<double>& radii,
+                         const Progress& progress) {
+  if (in.strategy == "grid") {
+    GridOptions go;
+    go.pattern = gridPatternFromName(in.gridPattern);
+    go.step = in.gridStep;
+    go.allowance = in.radialAllowance;
+    go.progress = progress;
+    return gridPlacements(region, radii, go);
+  }
+  // Pack and cover with each packing order asked for (in parallel: "auto" tries
+  // both) and keep the plan with the fewest plunges.
+  auto packAndCover = [&](PackingOrder order) {
+    PackingOptions po;
+    po.allowance = in.radialAllowance;
+    po.contactRatio = in.contactRatio;
+    po.order = order;
+    po.wallBand = in.maxWallStock;
+    po.progress = progress;
+    CoveringOptions co;
+    co.allowance = in.radialAllowance;
+    co.minCoverage = in.minCoverage;
+    co.wallStock = in.maxWallStock;
+    co.progress = progress;
+    // With a wall band, only the largest tool is packed: the covering then uses a
+    // smaller plunger only where the larger ones cannot reach the core.
+    return coverRegion(region, radii,
+                       in.maxWallStock > 0.0 ? packWithWallBand(region, radii.front(), po)
+                                             : packMaxHoleDegree(region, radii, po),
+                       co);
+  };
+  if (in.packingOrder == "hole_degree") return packAndCover(PackingOrder::HoleDegree);
+  if (in.packingOrder == "lattice") return packAndCover(PackingOrder::Lattice);
+  auto lattice = std::async(std::launch::async, packAndCover, PackingOrder::Lattice);
+  CoverResult cover = packAndCover(PackingOrder::HoleDegree);
+  CoverResult other = lattice.get();
+  if (other.disks.size() < cover.disks.size()) cover = std::move(other);
+  return cover;
+}
+
+// Each plunge's stop height (4.4): the floor's peaks once, then each disk.
+std::vector<CutDisk> depthsOf(const PlanInput& in, const CoverResult& cover, const DepthSolver& depths,
+                              const Progress& progress) {
+  std::vector<CutDisk> out;
+  for (const CoverDisk& d : cover.disks) {
+    progress.tick(0.75 + 0.1 * static_cast<double>(out.size()) / cover.disks.size());
+    const double z = depths.stopHeight(d.center, cutterOf(in.tools[d.tool])) + in.floorAllowance;
+    if (z >= in.topZ) {
+      std::ostringstream where;
+      where << "(" << d.center.x << ", " << d.center.y << ")";
+      throw Error("the floor rises to top_z or above under the plunge at " + where.str());
+    }
+    out.push_back({d.center, d.tool, z});
+  }
+  return out;
+}
+
+// Execution order: tools largest first, each tool's plunges as a short open path
+// starting nearest to where the previous tool ended.
+void sequence(const PlanInput& in, const std::vector<CutDisk>& disks, Plan& out) {
+  Vec2 at = in.start ? *in.start : in.boundary.front();
+  TourOptions to;
+  to.method = tourMethodFromName(in.sequencing);
+  to.seed = in.seed;
+  for (size_t t = 0; t < in.tools.size(); ++t) {
+    std::vector<const CutDisk*> mine;
+    std::vector<Vec2> pts;
+    for (const CutDisk& d : disks)
+      if (d.tool == static_cast<int>(t)) {
+        mine.push_back(&d);
+        pts.push_back(d.center);
+      }
+    if (pts.empty()) continue;
+    for (int i : tour(pts, false, at, to)) {
+      const Vec2 p = pts[i];
+      if (!out.plunges.empty()) out.stats.travelLength += dist({out.plunges.back().x, out.plunges.back().y}, p);
+      out.plunges.push_back({p.x, p.y, in.tools[t].diameter, in.tools[t].id, mine[i]->z});
+      at = p;
+    }
+    out.stats.perTool.push_back({in.tools[t].id, in.tools[t].diameter, static_cast<int>(pts.size())});
+  }
+}
+
+// The stock the plan leaves on the floor (and the volumes), after the rest step
+// in Z has added plunges where a sculptured floor keeps more than asked for.
+void floorStock(const PlanInput& in, const Region& region, const FloorSurface& floor, const DepthSolver& depths,
+                std::vector<CutDisk>& disks, Plan& out, const Progress& progress) {
+  std::vector<Cutter> cutters;
+  for (const Tool& t : in.tools) cutters.push_back(cutterOf(t));
+  StockGrid grid(region, floor, in.radialAllowance, in.floorAllowance,
+                 stockSpacing(out.stats.regionArea, cutters.back().radius), progress);
+  for (const CutDisk& d : disks) grid.cut(d, cutters[d.tool]);
+  const bool sculptured = !floor.isFlat() || cutters.front().shape != CutterShape::Flat ||
+                          cutters.back().shape != CutterShape::Flat;
+  if (sculptured && in.maxFloorStock > 0.0) {
+    progress.stage(0.85, "rest machining in Z");
+    RestOptions ro;
+    ro.maxFloorStock = in.maxFloorStock;
+    ro.radialAllowance = in.radialAllowance;
+    ro.floorAllowance = in.floorAllowance;
+    ro.topZ = in.topZ;
+    ro.progress = progress;
+    const RestResult rest = restInZ(region, depths, cutters, grid, ro);
+    disks.insert(disks.end(), rest.added.begin(), rest.added.end());
+    out.stats.restPlunges = static_cast<int>(rest.added.size());
+  }
+  const StockReport r = measureStock(grid, in.topZ);
+  out.stats.maxFloorStockLeft = r.maxFloorStock;
+  out.stats.meanFloorStock = r.meanFloorStock;
+  out.stats.volumeRemoved = r.volumeRemoved;
+  out.stats.volumeLeft = r.volumeLeft;
+  if (in.maxFloorStock > 0.0 && r.maxFloorStock > in.maxFloorStock + 1e-6) {
+    std::ostringstream w;
+    w << std::fixed << std::setprecision(2) << "up to " << r.maxFloorStock
+      << " mm of stock stay above the floor, more than the " << in.maxFloorStock
+      << " mm asked for: no plunger of the job reaches lower there (a smaller or ball-end tool would)";
+    out.warnings.push_back(w.str());
+  }
+  if (!sculptured) return;
+  // The picture's map: at most about 300 x 300 cells, each the highest stock in it.
+  StockMap m;
+  const size_t f = std::max<size_t>(1, std::max(grid.nx(), grid.ny()) / 300 + 1);
+  m.spacing = grid.spacing() * f;
+  m.origin = grid.origin() + Vec2{0.5 * (f - 1) * grid.spacing(), 0.5 * (f - 1) * grid.spacing()};
+  m.nx = (grid.nx() + f - 1) / f;
+  m.ny = (grid.ny() + f - 1) / f;
+  m.stock.assign(m.nx * m.ny, std::numeric_limits<float>::quiet_NaN());
+  for (size_t k = 0; k < grid.size(); ++k) {
+    const double s = grid.stock(k);
+    if (std::isnan(s)) continue;
+    float& cell = m.stock[(k / grid.nx() / f) * m.nx + (k % grid.nx()) / f];
+    if (std::isnan(cell) || s > cell) cell = static_cast<float>(s);
+  }
+  out.stockMap = std::move(m);
+}
+
+void coverageStats(const PlanInput& in, const Region& region, const CoverResult& cover, Plan& out) {
+  const double rMax = 0.5 * in.tools.front().diameter;
+  out.uncovered = cover.uncovered;
+  out.stats.regionArea = poly::area(allowedRegion(region, in.radialAllowance));
+  out.stats.accessibleArea = cover.accessibleArea;
+  out.stats.coveredArea = cover.coveredArea;
+  out.stats.coverage = cover.accessibleArea > 0 ? cover.coveredArea / cover.accessibleArea : 0.0;
+  out.stats.hexReferenceCount = cover.accessibleArea / (1.5 * std::sqrt(3.0) * rMax * rMax);
+  // The core: measured on the covering's own polygons when it planned one,
+  // otherwise (a grid, or no band) from the disks.
+  Polygons coreLeft = cover.coreUncovered;
+  out.stats.coreArea = cover.coreArea;
+  if (in.strategy == "grid" || in.maxWallStock <= 0.0) {
+    const Polygons core = in.maxWallStock > 0.0
+                              ? coreRegion(region, out.accessible, in.radialAllowance, in.maxWallStock)
+                              : out.accessible;
+    out.stats.coreArea = poly::area(core);
+    std::vector<Circle> disks;
+    for (const CoverDisk& d : cover.disks) disks.push_back({d.center, d.radius});
+    coreLeft = in.maxWallStock > 0.0 ? uncoveredRegion(core, disks) : cover.uncovered;
+  }
+  out.stats.coreCoverage = out.stats.coreArea > 0 ? 1.0 - poly::area(coreLeft) / out.stats.coreArea : 1.0;
+  out.stats.maxWallStockLeft = wallStockLeft(region, cover.uncovered, out.accessible, in.radialAllowance);
+  // Any strategy short of what was asked for says so: the grid's fixed spacing
+  // usually is. Worded for users of every front end (no JSON key names).
+  std::ostringstream w;
+  w << std::fixed << std::setprecision(2);
+  if (in.maxWallStock > 0.0 && poly::area(coreLeft) > 0.01) {
+    w << "the plunges leave " << poly::area(coreLeft) << " mm^2 farther than " << in.maxWallStock
+      << " mm from the walls uncut (" << 100 * out.stats.coreCoverage << " % of it cut)";
+    if (in.strategy == "grid") w << ": a grid's fixed spacing cannot reach it";
+    out.warnings.push_back(w.str());
+  } else if (in.maxWallStock <= 0.0 && out.stats.coverage < in.minCoverage - 1e-3) {
+    w << "the plunges clear " << 100 * out.stats.coverage << " % of the reachable floor, less than the "
+      << 100 * in.minCoverage << " % asked for: material stays along the walls";
+    if (in.strategy == "grid") w << " (a grid's fixed spacing cannot reach it)";
+    out.warnings.push_back(w.str());
+  }
+}
+
+}  // namespace
 
 Plan plan(PlanInput in, const Progress& progress) {
   if (in.autoTools) return planWithToolSelection(in, progress);
@@ -113,102 +312,29 @@ Plan plan(PlanInput in, const Progress& progress) {
     throw Error("no tool fits in the pocket: the smallest tool (diameter " + std::to_string(2 * rMin) +
                 ") with the radial allowance does not fit anywhere");
   }
-
+  if (in.maxWallStock > 0.0 && poly::area(coreRegion(region, out.accessible, in.radialAllowance, in.maxWallStock)) <= 0.0) {
+    std::ostringstream m;
+    m << "max_wall_stock: a band of " << in.maxWallStock
+      << " mm along the walls is the whole pocket, nothing would be cut (use a smaller band, or 0 to cover the"
+         " reachable floor)";
+    throw Error(m.str());
+  }
   // The floor: flat, an expression or BREP faces (checked before the long part).
-  std::unique_ptr<FloorSurface> floor;
-  if (in.floor.kind == Floor::Kind::Flat) {
-    floor = makeFlatFloor(in.floor.z);
-  } else if (in.floor.kind == Floor::Kind::Expression) {
-    floor = makeExpressionFloor(in.floor.expression);
-  } else {
-    const std::string& f = in.floor.brep;
-    floor = makeBrepFloor(f.front() == '/' || in.baseDir.empty() ? f : in.baseDir + "/" + f);
-  }
+  const std::unique_ptr<FloorSurface> floor = makeFloor(in);
 
-  // Pack and cover with each packing order asked for (in parallel: "auto" tries
-  // both) and keep the plan with the fewest plunges.
-  auto packAndCover = [&](PackingOrder order) {
-    PackingOptions po;
-    po.allowance = in.radialAllowance;
-    po.contactRatio = in.contactRatio;
-    po.order = order;
-    po.progress = progress;
-    CoveringOptions co;
-    co.allowance = in.radialAllowance;
-    co.minCoverage = in.minCoverage;
-    co.progress = progress;
-    return coverRegion(region, radii, packMaxHoleDegree(region, radii, po), co);
-  };
-  CoverResult cover;
   progress.stage(0.05, "packing and covering");
-  if (in.strategy == "grid") {
-    GridOptions go;
-    go.pattern = gridPatternFromName(in.gridPattern);
-    go.step = in.gridStep;
-    go.allowance = in.radialAllowance;
-    go.progress = progress;
-    cover = gridPlacements(region, radii, go);
-  } else if (in.packingOrder == "hole_degree") {
-    cover = packAndCover(PackingOrder::HoleDegree);
-  } else if (in.packingOrder == "lattice") {
-    cover = packAndCover(PackingOrder::Lattice);
-  } else {
-    auto lattice = std::async(std::launch::async, packAndCover, PackingOrder::Lattice);
-    cover = packAndCover(PackingOrder::HoleDegree);
-    CoverResult other = lattice.get();
-    if (other.disks.size() < cover.disks.size()) cover = std::move(other);
-  }
+  const CoverResult cover = placePlunges(in, region, radii, progress);
+  coverageStats(in, region, cover, out);
 
-  // Execution order: tools largest first, each tool's plunges as a short open path
-  // starting nearest to where the previous tool ended.
-  // Depths (4.4): the floor's peaks once, then each plunge's disk.
-  progress.stage(0.75, "ordering the plunges and their depths");
+  progress.stage(0.75, "plunge depths");
   const Vec2 lo = region.minCorner(), hi = region.maxCorner();
   const DepthSolver depths(*floor, lo, hi, std::max(0.5 * rMin, 1e-3 * dist(lo, hi)));
-  Vec2 at = in.start ? *in.start : in.boundary.front();
-  TourOptions to;
-  to.method = tourMethodFromName(in.sequencing);
-  to.seed = in.seed;
-  for (size_t t = 0; t < in.tools.size(); ++t) {
-    std::vector<Vec2> pts;
-    for (const CoverDisk& d : cover.disks)
-      if (d.tool == static_cast<int>(t)) pts.push_back(d.center);
-    if (pts.empty()) continue;
-    const Cutter cutter{in.tools[t].shape, 0.5 * in.tools[t].diameter,
-                        in.tools[t].shape == CutterShape::Ball ? 0.5 * in.tools[t].diameter : in.tools[t].cornerRadius};
-    for (int i : tour(pts, false, at, to)) {
-      progress.tick(0.8 + 0.2 * static_cast<double>(out.plunges.size()) / cover.disks.size());
-      const Vec2 p = pts[i];
-      const double z = depths.stopHeight(p, cutter) + in.floorAllowance;
-      if (z >= in.topZ) {
-        std::ostringstream where;
-        where << "(" << p.x << ", " << p.y << ")";
-        throw Error("the floor rises to top_z or above under the plunge at " + where.str());
-      }
-      if (!out.plunges.empty()) out.stats.travelLength += dist({out.plunges.back().x, out.plunges.back().y}, p);
-      out.plunges.push_back({p.x, p.y, in.tools[t].diameter, in.tools[t].id, z});
-      at = p;
-    }
-    out.stats.perTool.push_back({in.tools[t].id, in.tools[t].diameter, static_cast<int>(pts.size())});
-  }
+  std::vector<CutDisk> disks = depthsOf(in, cover, depths, progress);
+  floorStock(in, region, *floor, depths, disks, out, progress);
 
-  out.uncovered = cover.uncovered;
+  progress.stage(0.9, "ordering the plunges");
+  sequence(in, disks, out);
   out.stats.plungeCount = static_cast<int>(out.plunges.size());
-  out.stats.regionArea = poly::area(allowedRegion(region, in.radialAllowance));
-  out.stats.accessibleArea = cover.accessibleArea;
-  out.stats.coveredArea = cover.coveredArea;
-  out.stats.coverage = cover.accessibleArea > 0 ? cover.coveredArea / cover.accessibleArea : 0.0;
-  out.stats.hexReferenceCount = cover.accessibleArea / (1.5 * std::sqrt(3.0) * radii.front() * radii.front());
-  // Any strategy short of the coverage asked for says so: the grid's fixed
-  // spacing usually is. Worded for users of every front end (no JSON key names).
-  if (out.stats.coverage < in.minCoverage - 1e-3) {
-    std::ostringstream w;
-    w << std::fixed << std::setprecision(2) << "the plunges clear " << 100 * out.stats.coverage
-      << " % of the reachable floor, less than the " << 100 * in.minCoverage
-      << " % asked for: material stays along the walls";
-    if (in.strategy == "grid") w << " (a grid's fixed spacing cannot reach it)";
-    out.warnings.push_back(w.str());
-  }
   out.stats.estimatedMinutes = estimateMinutes(out, in.tools, in.safeZ, in.timeModel);
   out.stats.planningSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

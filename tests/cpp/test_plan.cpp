@@ -47,7 +47,9 @@ TEST(Plan, OrderDepthAndStats) {
   EXPECT_EQ(counted, p.stats.plungeCount);
   EXPECT_EQ(p.stats.plungeCount, static_cast<int>(p.plunges.size()));
   for (const Plunge& q : p.plunges) EXPECT_DOUBLE_EQ(q.z, -11.8);
-  EXPECT_GE(p.stats.coverage, 0.995);
+  // The default wall band: all of the core cut, nothing thicker than the band left.
+  EXPECT_LT(p.stats.coreArea * (1 - p.stats.coreCoverage), 0.01);
+  EXPECT_LE(p.stats.maxWallStockLeft, 1.0 + 1e-9);
   EXPECT_NEAR(p.stats.coverage, p.stats.coveredArea / p.stats.accessibleArea, 1e-12);
   EXPECT_LT(p.stats.accessibleArea, p.stats.regionArea);
   double travel = 0;
@@ -107,23 +109,52 @@ TEST(Plan, ToolThatFitsNowhereGetsNoPlunge) {
   in.tools.push_back({95, 7, 100});
   const Plan p = plan(in);
   for (const Plunge& q : p.plunges) EXPECT_NE(q.toolId, 7);
-  EXPECT_GE(p.stats.coverage, 0.995);
+  EXPECT_LT(p.stats.coreArea * (1 - p.stats.coreCoverage), 0.01);
 }
 
-// Every test shape of the suite: no gouge, coverage at least 99.5 %.
+// Every test shape of the suite: no gouge; with the default 1 mm wall band, the
+// core cut whole and no thicker wall stock; without a band, coverage at least 99.5 %.
 class Shapes : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(Shapes, InvariantsHold) {
-  PlanInput in = planInputFromJson(test::readData(std::string("shapes/") + GetParam() + ".json"));
-  const Plan p = plan(in);
+void expectNoGouge(const PlanInput& in, const Plan& p) {
   std::vector<Loop> loops{in.boundary};
   loops.insert(loops.end(), in.islands.begin(), in.islands.end());
   for (const Plunge& q : p.plunges) {
     EXPECT_TRUE(test::bruteInside(loops, {q.x, q.y}));
     EXPECT_GE(test::bruteWallDistance(loops, {q.x, q.y}), q.diameter / 2 + in.radialAllowance - 1e-6);
   }
-  EXPECT_GE(p.stats.coverage, 0.995);
+}
+
+TEST_P(Shapes, InvariantsHold) {
+  PlanInput in = planInputFromJson(test::readData(std::string("shapes/") + GetParam() + ".json"));
+  const Plan p = plan(in);
+  expectNoGouge(in, p);
+  EXPECT_LT(p.stats.coreArea * (1 - p.stats.coreCoverage), 0.01);
+  EXPECT_LE(p.stats.maxWallStockLeft, in.maxWallStock + 1e-9);
   EXPECT_TRUE(p.warnings.empty());
+  // The band's point: fewer plunges than the honeycomb grid of the same tools.
+  PlanInput grid = in;
+  grid.strategy = "grid";
+  EXPECT_LT(p.stats.plungeCount, plan(grid).stats.plungeCount);
+  // No band: today's covering down to min_coverage.
+  in.maxWallStock = 0.0;
+  const Plan today = plan(in);
+  expectNoGouge(in, today);
+  EXPECT_GE(today.stats.coverage, 0.995);
+  EXPECT_DOUBLE_EQ(today.stats.coreCoverage, today.stats.coverage);
+  EXPECT_TRUE(today.warnings.empty());
+}
+
+// A band as wide as the pocket leaves nothing to cut: a clear error, not an empty plan.
+TEST(Plan, BandWiderThanThePocketIsAnError) {
+  PlanInput in = square();
+  in.maxWallStock = 45;  // the square is 80 mm wide
+  EXPECT_NE(planError(in).find("max_wall_stock"), std::string::npos);
+  in.maxWallStock = -1;
+  EXPECT_NE(planError(in).find("max_wall_stock must be >= 0"), std::string::npos);
+  in.maxWallStock = 1;
+  in.maxFloorStock = NAN;
+  EXPECT_NE(planError(in).find("max_floor_stock"), std::string::npos);
 }
 
 INSTANTIATE_TEST_SUITE_P(TestShapes, Shapes, ::testing::Values("convex", "concave", "islands", "freeform", "neck"));
@@ -136,6 +167,7 @@ TEST(Plan, CoverageShortfallIsAWarning) {
   in.topZ = 0;
   in.safeZ = 5;
   in.floor.z = -10;
+  in.maxWallStock = 0;  // cover down to min_coverage
   const Plan ok = plan(in);
   EXPECT_GE(ok.stats.coverage, in.minCoverage);
   EXPECT_TRUE(ok.warnings.empty());

@@ -9,7 +9,7 @@ import xml.etree.ElementTree as ET
 import pytest
 
 from conftest import SHAPES
-from geometry_check import assert_no_gouge, coverage
+from geometry_check import assert_no_gouge, core_left, coverage, wall_stock_left
 
 SHAPE_NAMES = ["convex", "concave", "islands", "freeform", "neck"]
 
@@ -38,8 +38,11 @@ def test_plans_every_shape(cli, tmp_path, name):
     assert sum(t["count"] for t in stats["per_tool"]) == stats["plunge_count"]
     assert_no_gouge(data, plan)
     measured = coverage(data, plan)
-    assert measured >= 0.995, measured
     assert abs(measured - stats["coverage"]) < 2e-3
+    # The default 1 mm wall band, measured with GEOS: the core cut whole, no thicker stock on the walls.
+    assert max(core_left(data, plan, 1.0), default=0.0) < 0.01
+    assert wall_stock_left(data, plan) <= 1.0 + 0.01
+    assert stats["max_wall_stock_left"] <= 1.0 + 1e-9 and stats["core_coverage"] > 0.99999
     # Tools from the largest down, each tool's plunges together.
     diameters = [p["diameter"] for p in plan["plunges"]]
     assert diameters == sorted(diameters, reverse=True)

@@ -85,7 +85,8 @@ def test_brep_floor_through_the_cli(cli, tmp_path):
     zs = [p["z"] for p in plan["plunges"]]
     # The face spans about -21 .. -15.5 mm; every stop is on it plus the allowance.
     assert -21.5 < min(zs) and max(zs) < -14.5 and max(zs) - min(zs) > 2
-    assert plan["stats"]["coverage"] >= 0.995
+    assert plan["stats"]["core_coverage"] > 0.99999
+    assert plan["stats"]["max_floor_stock_left"] <= 1.0 + 1e-9
 
 
 @pytest.mark.parametrize("floor,message", [

@@ -7,7 +7,7 @@ import sys
 import pytest
 
 from conftest import SHAPES
-from geometry_check import assert_no_gouge, coverage
+from geometry_check import assert_no_gouge, core_left, coverage
 
 
 def load(name):
@@ -41,8 +41,10 @@ def test_plan_contract(plunge):
     for p in plan["plunges"]:
         assert set(p) == {"x", "y", "diameter", "tool_id", "z"}
     assert_no_gouge(data, plan)
-    assert coverage(data, plan) >= 0.995
+    assert max(core_left(data, plan, 1.0), default=0.0) < 0.01  # the default wall band
     assert plunge.plan(data)["plunges"] == plan["plunges"]  # deterministic
+    # Without a band: covered down to min_coverage, as before the band existed.
+    assert coverage(data, plunge.plan(dict(data, max_wall_stock=0))) >= 0.995
 
 
 def test_tuples_and_defaults(plunge):

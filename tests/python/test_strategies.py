@@ -102,7 +102,10 @@ def test_grid_plans_every_shape(plunge, name, pattern):
     measured = coverage(data, plan)
     assert measured == pytest.approx(plan["stats"]["coverage"], abs=2e-3)
     packed = plunge.plan(load(name))
-    assert packed["stats"]["coverage"] > measured  # the baseline leaves more near the walls
+    # The baseline leaves pieces of the core; the packing with its 1 mm wall band none, in fewer plunges.
+    assert packed["stats"]["core_coverage"] > plan["stats"]["core_coverage"]
+    if pattern == "honeycomb":
+        assert packed["stats"]["plunge_count"] < plan["stats"]["plunge_count"]
 
 
 def test_grid_bad_input(plunge):

@@ -35,6 +35,11 @@ struct CoveringOptions {
   // Stop covering material attached to the walls once this fraction of the
   // accessible region is covered (free-standing pins are always covered).
   double minCoverage = 0.996;
+  // The wall band (mm beyond the allowance, "max_wall_stock"): when > 0, every
+  // point of the accessible region farther than allowance + wallStock from the
+  // walls is covered (the core), material inside the band may stay, and
+  // minCoverage is not used. 0: cover down to minCoverage.
+  double wallStock = 0.0;
   Progress progress;  // checked per plunge placed
 };
 
@@ -42,6 +47,9 @@ struct CoveringOptions {
 Polygons allowedRegion(const Region& region, double allowance);
 // The part of it that the smallest tool can reach: opening by its radius.
 Polygons accessibleRegion(const Region& region, double minRadius, double allowance);
+// What must be cut with a wall band: the accessible region minus the band
+// (points farther than allowance + band from every wall and island).
+Polygons coreRegion(const Region& region, const Polygons& accessible, double allowance, double band);
 // The part of `area` outside every disk (polygon booleans; disks become
 // inscribed polygons, so what is uncovered is never underestimated).
 Polygons uncoveredRegion(const Polygons& area, const std::vector<Circle>& disks);
@@ -62,6 +70,9 @@ struct CoverResult {
   double accessibleArea = 0.0;
   double coveredArea = 0.0;
   Polygons uncovered;  // accessible region minus all disks
+  // With a wall band: the core and what of it the disks leave (inscribed disks).
+  double coreArea = 0.0;
+  Polygons coreUncovered;
 };
 
 CoverResult coverRegion(const Region& region, const std::vector<double>& radii,

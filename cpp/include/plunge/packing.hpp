@@ -43,6 +43,11 @@ struct PackingOptions {
   // Radial allowance: every disk keeps radius + allowance from the walls.
   double allowance = 0.0;
   PackingOrder order = PackingOrder::HoleDegree;
+  // The wall band (mm beyond the allowance, "max_wall_stock"; 0: none). When
+  // > 0, packMaxHoleDegree places wall rows only: disks touching the walls, those
+  // of one tool meeting at the band's chord 2 sqrt(2 r b - b^2), so that their
+  // scallops stay inside the band (packWithWallBand adds the inside).
+  double wallBand = 0.0;
   Progress progress;  // checked per placement: a cancelled plan stops here
 };
 
@@ -61,6 +66,15 @@ std::vector<Vec2> cornerPlacementsWallWall(const Segment& a, const Segment& b, d
 std::vector<Vec2> cornerPlacementsWallCircle(const Segment& wall, double clearance, const Circle& locus);
 std::vector<Vec2> cornerPlacementsCircleCircle(const Circle& locusA, const Circle& locusB);
 
+// Centre spacing of a wall row of radius-r disks whose scallops reach `band`
+// into the material (the chord of the disk at depth band); 0 without a band.
+double wallRowSpacing(double r, double band);
+
+// How far inside its wall row the plain packing starts (centre to centre,
+// across the wall's normal): inner disks meeting at 2 rho leave scallops
+// sqrt(r^2 - rho^2) deep, which must stay on the strip the row cuts whole.
+double wallRowInset(double r, double rho, double band);
+
 // Eq. 4.68: hole degree lambda = 1 - d_min / r, d_min being the gap to the
 // nearest item the placement does not touch (clamped to [0, r]).
 double holeDegree(double dMin, double r);
@@ -70,5 +84,9 @@ double holeDegree(double dMin, double r);
 // wall than radius + allowance.
 std::vector<PackedDisk> packMaxHoleDegree(const Region& region, const std::vector<double>& radii,
                                           const PackingOptions& options = {});
+
+// With a wall band: one tool's wall rows, then the plain packing inside them
+// (its wall clearance increased by wallRowInset). No band: packMaxHoleDegree.
+std::vector<PackedDisk> packWithWallBand(const Region& region, double radius, const PackingOptions& options);
 
 }  // namespace plunge

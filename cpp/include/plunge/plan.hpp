@@ -56,6 +56,12 @@ struct PlanInput {
   // "strategy": "grid" with "grid": {"pattern": "honeycomb" | "square", "step": fraction of the diameter}.
   std::string gridPattern = "honeycomb";
   double gridStep = 0.0;
+  // Stock left for the finisher (stock.hpp): "max_wall_stock", mm beyond the
+  // radial allowance: every point farther from the walls is cut (0: cover down
+  // to min_coverage instead). "max_floor_stock", mm above floor + floor
+  // allowance: plunges are added where a sculptured floor keeps more (0: none added).
+  double maxWallStock = 1.0;
+  double maxFloorStock = 1.0;
 };
 
 struct Plunge {
@@ -84,6 +90,24 @@ struct PlanStats {
   // accessible area would need (area / (2.598 r^2)), a reference count, not a bound.
   double hexReferenceCount = 0.0;
   double estimatedMinutes = 0.0;  // the time model's estimate (selection.hpp)
+  // Stock left (stock.hpp). The core: the accessible region farther than
+  // allowance + max_wall_stock from the walls (all of it when the band is 0).
+  double coreArea = 0.0;
+  double coreCoverage = 0.0;
+  double maxWallStockLeft = 0.0;   // thickest material left along the walls, beyond the allowance
+  double maxFloorStockLeft = 0.0;  // highest stock above floor + allowance where plunges cut
+  double meanFloorStock = 0.0;
+  double volumeRemoved = 0.0;  // mm^3
+  double volumeLeft = 0.0;     // mm^3: the pocket down to floor + allowance, minus what is removed
+  int restPlunges = 0;         // plunges added by the rest step in Z
+};
+
+// The floor stock left, sampled on a raster (for the plan's picture).
+struct StockMap {
+  Vec2 origin;
+  double spacing = 0.0;
+  size_t nx = 0, ny = 0;
+  std::vector<float> stock;  // row-major; NaN where nothing was cut
 };
 
 struct Plan {
@@ -96,6 +120,7 @@ struct Plan {
   // What the user should know about a plan that is valid but short of what was
   // asked (for example coverage below min_coverage); JSON "warnings".
   std::vector<std::string> warnings;
+  std::optional<StockMap> stockMap;  // sculptured floors only
 };
 
 // Checks every number and option of the input; throws plunge::Error naming the problem.

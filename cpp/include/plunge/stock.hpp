@@ -1,0 +1,111 @@
+// The stock a plan leaves for the finisher, and rest machining in Z.
+//
+// Roughing is judged by what it leaves (docs/plan-format.md, "Stock left"):
+// - along the walls, the band of material no plunge reaches (measured on the
+//   uncovered polygons: their farthest point from the walls, minus the radial
+//   allowance);
+// - over the floor, the height of the stock above floor + floor allowance
+//   where plunges cut: a plunge stops at the highest floor point under its disk
+//   (depth.hpp, thesis 4.4), so over a sculptured floor it leaves steps.
+// Both are measured on a raster of the pocket (StockGrid). The rest step adds
+// plunges where the floor stock exceeds a limit: smaller plungers, or the same
+// one centred lower, each with its own gouge-free stop height (rest machining
+// in Z), chosen greedily by how many over-limit samples each clears.
+#pragma once
+#include <limits>
+#include <vector>
+
+#include "plunge/depth.hpp"
+#include "plunge/floor.hpp"
+#include "plunge/progress.hpp"
+#include "plunge/region.hpp"
+
+namespace plunge {
+
+// One plunge as the stock sees it: where, which cutter, and its tip height.
+struct CutDisk {
+  Vec2 center;
+  int tool = 0;  // index into the cutters
+  double z = 0.0;
+};
+
+// Samples of the pocket every `spacing` mm (row-major from `origin`): the
+// floor height (+ floor allowance) and the lowest cut so far. Samples outside
+// the region shrunk by the radial allowance, or without floor, have a NaN floor.
+class StockGrid {
+ public:
+  StockGrid(const Region& region, const FloorSurface& floor, double radialAllowance, double floorAllowance,
+            double spacing, const Progress& progress = Progress());
+  // Lowers the cut height under a plunge's disk.
+  void cut(const CutDisk& d, const Cutter& cutter);
+  // Stock above floor + allowance at sample k: NaN where nothing cut it.
+  double stock(size_t k) const;
+  bool valid(size_t k) const { return !std::isnan(floor_[k]); }
+  Vec2 at(size_t k) const { return {origin_.x + (k % nx_) * spacing_, origin_.y + (k / nx_) * spacing_}; }
+  double floorAt(size_t k) const { return floor_[k]; }
+  double cutAt(size_t k) const { return cut_[k]; }
+  // Sample indices whose position lies in the box [lo, hi].
+  template <class F>
+  void forEachIn(Vec2 lo, Vec2 hi, F&& f) const {
+    const long i0 = std::max(0L, static_cast<long>(std::ceil((lo.x - origin_.x) / spacing_)));
+    const long j0 = std::max(0L, static_cast<long>(std::ceil((lo.y - origin_.y) / spacing_)));
+    const long i1 = std::min(static_cast<long>(nx_) - 1, static_cast<long>(std::floor((hi.x - origin_.x) / spacing_)));
+    const long j1 = std::min(static_cast<long>(ny_) - 1, static_cast<long>(std::floor((hi.y - origin_.y) / spacing_)));
+    for (long j = j0; j <= j1; ++j)
+      for (long i = i0; i <= i1; ++i) f(static_cast<size_t>(j) * nx_ + static_cast<size_t>(i));
+  }
+  size_t size() const { return floor_.size(); }
+  size_t nx() const { return nx_; }
+  size_t ny() const { return ny_; }
+  double spacing() const { return spacing_; }
+  Vec2 origin() const { return origin_; }
+  // Steepest floor slope between neighbouring samples (for the sampling margin).
+  double maxSlope() const;
+
+ private:
+  Vec2 origin_;
+  double spacing_;
+  size_t nx_ = 0, ny_ = 0;
+  std::vector<double> floor_, cut_;
+};
+
+// Sample spacing for a pocket: fine enough to resolve the floor's steps
+// (about 200,000 samples), never coarser than a quarter of the smallest tool.
+double stockSpacing(double area, double minRadius);
+
+struct RestOptions {
+  double maxFloorStock = 1.0;  // mm above floor + floor allowance
+  double radialAllowance = 0.0;
+  double floorAllowance = 0.0;
+  double topZ = 0.0;
+  Progress progress;
+};
+
+struct RestResult {
+  std::vector<CutDisk> added;  // appended to the plan's disks, in the order chosen
+  int unreachable = 0;         // over-limit samples no plunge of the job can bring under the limit
+};
+
+// Adds plunges until no cut sample's floor stock exceeds the limit (less a
+// margin for what lies between samples), or no plunge of any tool helps.
+// `grid` must already hold the plan's cuts; it is updated with the added ones.
+RestResult restInZ(const Region& region, const DepthSolver& depths, const std::vector<Cutter>& cutters,
+                   StockGrid& grid, const RestOptions& options);
+
+struct StockReport {
+  double maxFloorStock = 0.0;   // over cut samples
+  double meanFloorStock = 0.0;  // over cut samples
+  double volumeRemoved = 0.0;   // mm^3, top of stock down to the cuts
+  double volumeLeft = 0.0;      // mm^3, the pocket (to floor + allowance) minus what is removed
+};
+StockReport measureStock(const StockGrid& grid, double topZ);
+
+// The thickest material the uncovered polygons leave along the walls: their
+// farthest vertex from the walls, minus the radial allowance (0 if none).
+// Vertices on the accessible region's outline do not count: they lie on a wall
+// or on the arc of a corner the smallest tool cannot reach (stock any tool of
+// that size leaves). Pieces under `sliver` mm^2 are the polygon approximation's.
+double wallStockLeft(const Region& region, const std::vector<Loop>& uncovered, const std::vector<Loop>& accessible,
+                     double radialAllowance, double sliver = 0.01);
+
+}  // namespace plunge
