@@ -272,6 +272,51 @@ std::string pathData(const Polygons& loops) {
   return s.str();
 }
 
+// Colour of a floor stock: green (none) to yellow (the limit), then to red (twice
+// the limit and more); quantized in 16 steps so that equal runs merge.
+std::string stockColour(double stock, double limit) {
+  const double t = std::clamp(stock / std::max(limit, 1e-9), 0.0, 2.0);
+  const double q = std::round(t * 8) / 8;
+  int r, g, b;
+  if (q <= 1) {
+    r = static_cast<int>(40 + 215 * q);
+    g = static_cast<int>(170 + 50 * q);
+    b = 60;
+  } else {
+    r = 230;
+    g = static_cast<int>(220 * (2 - q));
+    b = 40;
+  }
+  std::ostringstream c;
+  c << "rgb(" << r << "," << g << "," << b << ")";
+  return c.str();
+}
+
+// The floor stock left as coloured cells, runs of one colour in a row merged.
+std::string stockMapSvg(const StockMap& m, double limit) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(3) << "<g stroke=\"none\">\n";
+  for (size_t j = 0; j < m.ny; ++j) {
+    size_t i = 0;
+    while (i < m.nx) {
+      const float v = m.stock[j * m.nx + i];
+      if (std::isnan(v)) {
+        ++i;
+        continue;
+      }
+      const std::string c = stockColour(v, limit);
+      size_t k = i + 1;
+      while (k < m.nx && !std::isnan(m.stock[j * m.nx + k]) && stockColour(m.stock[j * m.nx + k], limit) == c) ++k;
+      const double x = m.origin.x + (i - 0.5) * m.spacing, y = m.origin.y + (j + 0.5) * m.spacing;
+      s << "<rect x=\"" << x << "\" y=\"" << -y << "\" width=\"" << (k - i) * m.spacing << "\" height=\"" << m.spacing
+        << "\" fill=\"" << c << "\"/>\n";
+      i = k;
+    }
+  }
+  s << "</g>\n";
+  return s.str();
+}
+
 }  // namespace
 
 std::string planToSvg(const PlanInput& input, const Plan& plan) {
@@ -284,7 +329,7 @@ std::string planToSvg(const PlanInput& input, const Plan& plan) {
   const double size = std::max(w, h);
   const double margin = 0.04 * size;
   const double sw = size / 900.0;  // stroke width
-  const double legendH = 0.05 * size * (3 + plan.stats.perTool.size());
+  const double legendH = 0.05 * size * (3 + plan.stats.perTool.size() + (plan.stockMap ? 1 : 0));
   const double vx = lo.x - margin, vy = -hi.y - margin - legendH, vw = w + 2 * margin, vh = h + 2 * margin + legendH;
   std::ostringstream s;
   s << std::fixed << std::setprecision(3);
@@ -302,10 +347,12 @@ std::string planToSvg(const PlanInput& input, const Plan& plan) {
     << "\" stroke-width=\"" << sw << "\"/>\n";
   std::map<int, int> colour;  // tool id -> palette slot
   for (const ToolCount& t : plan.stats.perTool) colour.emplace(t.toolId, static_cast<int>(colour.size()));
+  if (plan.stockMap) s << stockMapSvg(*plan.stockMap, input.maxFloorStock);
+  const char* fillOpacity = plan.stockMap ? "0.06" : "0.22";  // the stock map shows through
   for (const Plunge& p : plan.plunges) {
     const char* c = kPalette[colour[p.toolId] % 8];
     s << "<circle cx=\"" << p.x << "\" cy=\"" << -p.y << "\" r=\"" << p.diameter / 2 << "\" fill=\"" << c
-      << "\" fill-opacity=\"0.22\" stroke=\"" << c << "\" stroke-width=\"" << sw << "\"/>\n";
+      << "\" fill-opacity=\"" << fillOpacity << "\" stroke=\"" << c << "\" stroke-width=\"" << sw << "\"/>\n";
   }
   // Tool paths: one polyline per tool, in execution order.
   for (const ToolCount& t : plan.stats.perTool) {
@@ -354,6 +401,15 @@ std::string planToSvg(const PlanInput& input, const Plan& plan) {
       << "\" fill-opacity=\"0.5\" stroke=\"" << c << "\"  stroke-width=\"" << sw << "\"/>\n";
     s << "<text x=\"" << lo.x + fs * 1.4 << "\" y=\"" << y + fs << "\" font-family=\"sans-serif\" font-size=\"" << fs
       << "\">T" << t.toolId << " D" << t.diameter << ": " << t.count << " plunges</text>\n";
+    y += 1.4 * fs;
+  }
+  if (plan.stockMap) {
+    for (int k = 0; k <= 4; ++k)
+      s << "<rect x=\"" << lo.x + k * fs << "\" y=\"" << y + 0.2 * fs << "\" width=\"" << fs << "\" height=\"" << 0.8 * fs
+        << "\" fill=\"" << stockColour(0.5 * k * input.maxFloorStock, input.maxFloorStock) << "\"/>\n";
+    s << "<text x=\"" << lo.x + fs * 5.4 << "\" y=\"" << y + fs << "\" font-family=\"sans-serif\" font-size=\"" << fs
+      << "\">floor stock 0 to " << 2 * input.maxFloorStock << " mm (limit " << input.maxFloorStock
+      << " mm, yellow), max " << plan.stats.maxFloorStockLeft << " mm</text>\n";
     y += 1.4 * fs;
   }
   if (depthDots) {

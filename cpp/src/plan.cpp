@@ -206,7 +206,7 @@ void floorStock(const PlanInput& in, const Region& region, const FloorSurface& f
                 std::vector<CutDisk>& disks, Plan& out, const Progress& progress) {
   std::vector<Cutter> cutters;
   for (const Tool& t : in.tools) cutters.push_back(cutterOf(t));
-  StockGrid grid(region, floor, in.radialAllowance, in.floorAllowance,
+  StockGrid grid(region, floor, in.radialAllowance, in.floorAllowance, in.maxWallStock,
                  stockSpacing(out.stats.regionArea, cutters.back().radius), progress);
   for (const CutDisk& d : disks) grid.cut(d, cutters[d.tool]);
   const bool sculptured = !floor.isFlat() || cutters.front().shape != CutterShape::Flat ||
@@ -236,9 +236,9 @@ void floorStock(const PlanInput& in, const Region& region, const FloorSurface& f
     out.warnings.push_back(w.str());
   }
   if (!sculptured) return;
-  // The picture's map: at most about 300 x 300 cells, each the highest stock in it.
+  // The picture's map: at most about 160 x 160 cells, each the highest stock in it.
   StockMap m;
-  const size_t f = std::max<size_t>(1, std::max(grid.nx(), grid.ny()) / 300 + 1);
+  const size_t f = std::max<size_t>(1, std::max(grid.nx(), grid.ny()) / 160 + 1);
   m.spacing = grid.spacing() * f;
   m.origin = grid.origin() + Vec2{0.5 * (f - 1) * grid.spacing(), 0.5 * (f - 1) * grid.spacing()};
   m.nx = (grid.nx() + f - 1) / f;

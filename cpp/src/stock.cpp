@@ -21,6 +21,17 @@ using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
 using BBox = bg::model::box<BPoint>;
 using BoxValue = std::pair<BBox, int>;
 
+// x moved away from the walls closer than `clearance` (a few steps: corners).
+Vec2 pushOffWalls(const Region& region, Vec2 x, double clearance) {
+  for (int i = 0; i < 4; ++i) {
+    Vec2 w;
+    double d;
+    if (!region.nearestWallPoint(x, clearance, w, d) || d < 1e-9 || !region.contains(x)) break;
+    x = w + (x - w) * ((clearance + 1e-6) / d);
+  }
+  return x;
+}
+
 }  // namespace
 
 double stockSpacing(double area, double minRadius) {
@@ -29,7 +40,7 @@ double stockSpacing(double area, double minRadius) {
 }
 
 StockGrid::StockGrid(const Region& region, const FloorSurface& floor, double radialAllowance, double floorAllowance,
-                     double spacing, const Progress& progress)
+                     double wallBand, double spacing, const Progress& progress)
     : spacing_(spacing) {
   if (!(spacing > 0.0)) throw Error("stock sampling: spacing must be > 0");
   const Vec2 lo = region.minCorner(), hi = region.maxCorner();
@@ -39,29 +50,44 @@ StockGrid::StockGrid(const Region& region, const FloorSurface& floor, double rad
   ny_ = static_cast<size_t>(std::max(1.0, std::floor((hi.y - lo.y) / spacing)));
   floor_.assign(nx_ * ny_, kNaN);
   cut_.assign(nx_ * ny_, kInf);
+  safe_.assign(nx_ * ny_, kInf);
+  core_.assign(nx_ * ny_, 0);
   for (size_t j = 0; j < ny_; ++j) {
     progress.tick();
     for (size_t i = 0; i < nx_; ++i) {
       const size_t k = j * nx_ + i;
       const Vec2 p = at(k);
-      if (!region.contains(p) || region.wallDistance(p, radialAllowance) < radialAllowance) continue;
+      if (!region.contains(p)) continue;
+      const double w = region.wallDistance(p, radialAllowance + wallBand + spacing);
+      if (w < radialAllowance) continue;
       const double z = floor.height(p);
-      if (std::isfinite(z)) floor_[k] = z + floorAllowance;
+      if (!std::isfinite(z)) continue;
+      floor_[k] = z + floorAllowance;
+      // The rest step also targets one sample step beyond the band: the core's
+      // own edge is a thin strip that a raster would otherwise sample only here and there.
+      core_[k] = w >= radialAllowance + wallBand ? 2 : w >= radialAllowance + wallBand - spacing ? 1 : 0;
     }
   }
 }
 
 void StockGrid::cut(const CutDisk& d, const Cutter& cutter) {
-  const double r = cutter.radius;
+  const double r = cutter.radius, h = neighbourhood();
   forEachIn(d.center - Vec2{r, r}, d.center + Vec2{r, r}, [&](size_t k) {
     const double rho = dist(at(k), d.center);
-    if (rho <= r) cut_[k] = std::min(cut_[k], d.z + cutterProfile(cutter, rho));
+    if (rho > r) return;
+    cut_[k] = std::min(cut_[k], d.z + cutterProfile(cutter, rho));
+    if (rho + h <= r) safe_[k] = std::min(safe_[k], d.z + cutterProfile(cutter, rho + h));
   });
 }
 
 double StockGrid::stock(size_t k) const {
   if (!valid(k) || !std::isfinite(cut_[k])) return kNaN;
   return cut_[k] - floor_[k];
+}
+
+double StockGrid::safeStock(size_t k) const {
+  if (!valid(k) || !std::isfinite(safe_[k])) return kNaN;
+  return safe_[k] - floor_[k];
 }
 
 double StockGrid::maxSlope() const {
@@ -80,21 +106,26 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
                    StockGrid& grid, const RestOptions& opt) {
   RestResult out;
   if (cutters.empty()) return out;
-  // Between samples the stock can be higher than at them: by at most the floor's
-  // slope times half a sample step (plus the step of a neighbouring disk's rim).
-  const double margin = std::min(0.25 * opt.maxFloorStock, grid.maxSlope() * grid.spacing());
+  // Every point lies within a neighbourhood (0.75 of a sample step) of a sample,
+  // and a sample only counts as cut by a plunge that cuts all of its neighbourhood
+  // (StockGrid::safeStock); what stays between samples is then the floor's slope
+  // times that distance.
+  const double margin = std::min(0.25 * opt.maxFloorStock, grid.maxSlope() * grid.neighbourhood());
   const double target = opt.maxFloorStock - margin;
   std::vector<size_t> over;
   for (size_t k = 0; k < grid.size(); ++k)
-    if (grid.stock(k) > target) over.push_back(k);
+    if (grid.restTarget(k) && grid.safeStock(k) > target) over.push_back(k);
   // Highest first, so each added plunge goes where the step is worst.
-  std::stable_sort(over.begin(), over.end(), [&](size_t a, size_t b) { return grid.stock(a) > grid.stock(b); });
+  std::stable_sort(over.begin(), over.end(),
+                   [&](size_t a, size_t b) { return grid.safeStock(a) > grid.safeStock(b); });
   std::vector<char> isOver(grid.size(), 0), given(grid.size(), 0);
   for (size_t k : over) isOver[k] = 1;
 
+  // A plunge fixes a sample when it cuts the sample's whole neighbourhood low enough.
+  const double h = grid.neighbourhood();
   auto fixes = [&](const CutDisk& d, size_t k) {
     const Cutter& c = cutters[d.tool];
-    const double rho = dist(grid.at(k), d.center);
+    const double rho = dist(grid.at(k), d.center) + h;
     return rho <= c.radius && d.z + cutterProfile(c, rho) <= grid.floorAt(k) + target;
   };
   for (size_t k : over) {
@@ -105,14 +136,14 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
     int bestScore = 0;
     for (size_t t = 0; t < cutters.size(); ++t) {
       const double r = cutters[t].radius, clearance = r + opt.radialAllowance;
-      // Centres over the sample and around it, and the one pushed off the nearest wall.
-      std::vector<Vec2> centres{p};
-      for (double f : {0.4, 0.8})
-        for (int a = 0; a < 6; ++a) centres.push_back(p + Vec2{std::cos(a * M_PI / 3), std::sin(a * M_PI / 3)} * (f * r));
-      Vec2 w;
-      double dw;
-      if (region.nearestWallPoint(p, clearance, w, dw) && dw > 1e-9)
-        centres.push_back(w + (p - w) * ((clearance + 1e-6) / dw));
+      // Centres over the sample and around it (12 directions, 0.45 r and 0.9 r
+      // away), each pushed off the walls it is too close to: beside a wall the
+      // disk may reach lower floor along the wall than across it.
+      std::vector<Vec2> centres{pushOffWalls(region, p, clearance)};
+      for (double f : {0.45, 0.9})
+        for (int a = 0; a < 12; ++a)
+          centres.push_back(
+              pushOffWalls(region, p + Vec2{std::cos(a * M_PI / 6), std::sin(a * M_PI / 6)} * (f * r), clearance));
       for (const Vec2& c : centres) {
         if (dist(c, p) > r || !region.diskFits(c, clearance)) continue;
         CutDisk d{c, static_cast<int>(t), 0.0};
@@ -141,7 +172,7 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
     grid.cut(best, cutters[best.tool]);
     const double r = cutters[best.tool].radius;
     grid.forEachIn(best.center - Vec2{r, r}, best.center + Vec2{r, r}, [&](size_t q) {
-      if (isOver[q] && grid.stock(q) <= target) isOver[q] = 0;
+      if (isOver[q] && grid.safeStock(q) <= target) isOver[q] = 0;
     });
     out.added.push_back(best);
   }
@@ -159,6 +190,7 @@ StockReport measureStock(const StockGrid& grid, double topZ) {
     const double s = grid.stock(k);
     if (std::isnan(s)) continue;
     r.volumeRemoved += std::max(0.0, topZ - std::max(grid.cutAt(k), grid.floorAt(k))) * cell;
+    if (!grid.inCore(k)) continue;  // the wall band's material, not the floor's
     r.maxFloorStock = std::max(r.maxFloorStock, s);
     sum += std::max(0.0, s);
     ++n;

@@ -32,14 +32,25 @@ struct CutDisk {
 // Samples of the pocket every `spacing` mm (row-major from `origin`): the
 // floor height (+ floor allowance) and the lowest cut so far. Samples outside
 // the region shrunk by the radial allowance, or without floor, have a NaN floor.
+// Samples farther than allowance + wallBand from the walls are the core: the
+// floor stock is measured and limited there (nearer, the wall band's material
+// is the finisher's, and a plunge covers it only with its rim).
 class StockGrid {
  public:
   StockGrid(const Region& region, const FloorSurface& floor, double radialAllowance, double floorAllowance,
-            double spacing, const Progress& progress = Progress());
+            double wallBand, double spacing, const Progress& progress = Progress());
+  bool inCore(size_t k) const { return core_[k] == 2; }
+  bool restTarget(size_t k) const { return core_[k] != 0; }  // the core and one sample step around it
   // Lowers the cut height under a plunge's disk.
   void cut(const CutDisk& d, const Cutter& cutter);
   // Stock above floor + allowance at sample k: NaN where nothing cut it.
   double stock(size_t k) const;
+  // The same, counting only plunges that cut the whole neighbourhood of the
+  // sample (a disk of neighbourhood() around it; every point of the plane is
+  // that close to a sample), at their highest over it: an upper bound of the
+  // stock anywhere in the neighbourhood, but for the floor's own variation.
+  double safeStock(size_t k) const;
+  double neighbourhood() const { return 0.75 * spacing_; }
   bool valid(size_t k) const { return !std::isnan(floor_[k]); }
   Vec2 at(size_t k) const { return {origin_.x + (k % nx_) * spacing_, origin_.y + (k / nx_) * spacing_}; }
   double floorAt(size_t k) const { return floor_[k]; }
@@ -66,7 +77,8 @@ class StockGrid {
   Vec2 origin_;
   double spacing_;
   size_t nx_ = 0, ny_ = 0;
-  std::vector<double> floor_, cut_;
+  std::vector<double> floor_, cut_, safe_;
+  std::vector<char> core_;  // 2: in the core, 1: one step around it (rest targets), 0: the wall band
 };
 
 // Sample spacing for a pocket: fine enough to resolve the floor's steps
@@ -93,8 +105,8 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
                    StockGrid& grid, const RestOptions& options);
 
 struct StockReport {
-  double maxFloorStock = 0.0;   // over cut samples
-  double meanFloorStock = 0.0;  // over cut samples
+  double maxFloorStock = 0.0;   // over cut samples of the core
+  double meanFloorStock = 0.0;  // over cut samples of the core
   double volumeRemoved = 0.0;   // mm^3, top of stock down to the cuts
   double volumeLeft = 0.0;      // mm^3, the pocket (to floor + allowance) minus what is removed
 };
