@@ -27,7 +27,7 @@ translate = FreeCAD.Qt.translate
 
 # Properties the job's setup sheet can carry defaults for.
 SETUP_PROPERTIES = ["RadialAllowance", "FloorAllowance", "ChordTolerance", "UseCannedCycle", "PeckDepth",
-                    "MinCoverage", "AutoSelectTools", "Strategy"]
+                    "MinCoverage", "AutoSelectTools", "Strategy", "MaxWallStock", "MaxFloorStock"]
 
 # Strategy property values -> the planner's "strategy" and "grid" input.
 STRATEGIES = {
@@ -127,8 +127,14 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         _add(obj, "App::PropertyBool", "UseCannedCycle", "Plunge with G81 (G83 when pecking) instead of G1 moves",
              False)
         _add(obj, "App::PropertyLength", "PeckDepth", "Peck depth of the canned cycle, 0 = no pecking", 0.0)
+        _add(obj, "App::PropertyLength", "MaxWallStock",
+             "Thickest material the plunges may leave along walls and islands, beyond the radial allowance "
+             "(wall rows spaced for it; 0: clear Min Coverage of the reachable floor instead)", 1.0)
+        _add(obj, "App::PropertyLength", "MaxFloorStock",
+             "Highest stock a sculptured floor may keep above floor + allowance: more plunges where it would "
+             "(0: none added)", 1.0)
         _add(obj, "App::PropertyFloat", "MinCoverage",
-             "Percentage of the reachable floor the plunges must clear", 99.6)
+             "With Max Wall Stock 0: percentage of the reachable floor the plunges must clear", 99.6)
         _add(obj, "App::PropertyBool", "AutoSelectTools",
              "Let the planner choose which of the plungers to use (shortest estimated time); the others stay idle",
              False)
@@ -235,6 +241,8 @@ class ObjectPlungeRough(PathOp.ObjectOp):
                 "allowance": {"radial": obj.RadialAllowance.Value + deviation + 1e-6,
                               "floor": obj.FloorAllowance.Value},
                 "min_coverage": obj.MinCoverage / 100.0,
+                "max_wall_stock": obj.MaxWallStock.Value,
+                "max_floor_stock": obj.MaxFloorStock.Value,
             }
             if obj.SafeHeight.Value > obj.ClearanceHeight.Value:
                 raise ValueError("the safe height is above the clearance height")
@@ -267,6 +275,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         if post_warning:
             warnings.append(post_warning)
         obj.Summary = summary(dict(plan, warnings=warnings))
+        FreeCAD.Console.PrintMessage("%s: %s\n" % (obj.Label, stock_report(plan["stats"])))
         for warning in warnings:
             FreeCAD.Console.PrintWarning("%s: %s\n" % (obj.Label, warning))
         # Automatic choice: this operation cuts with the largest plunger the plan
@@ -362,12 +371,23 @@ def time_model(tc):
     return model
 
 
+def stock_report(s):
+    """What the plan leaves for the finisher: wall band, floor stock, volumes."""
+    text = "stock left: walls up to %.2f mm (%.2f %% of the core cut), floor up to %.2f mm (mean %.2f mm)" % (
+        s["max_wall_stock_left"], 100 * s["core_coverage"], s["max_floor_stock_left"], s["mean_floor_stock"])
+    text += "; %.1f cm3 removed, %.1f cm3 left" % (s["volume_removed"] / 1000, s["volume_left"] / 1000)
+    if s["rest_plunges"]:
+        text += "; %d plunges added for the floor stock" % s["rest_plunges"]
+    return text
+
+
 def summary(plan):
-    """Plunges per tool, coverage, travel and the planner's time estimate."""
+    """Plunges per tool, coverage, travel, the planner's time estimate and the stock left."""
     s = plan["stats"]
     parts = ["T%d %g mm: %d" % (t["tool_id"], t["diameter"], t["count"]) for t in s["per_tool"]]
-    text = "%d plunges (%s), coverage %.2f %%, travel %.0f mm, about %.0f min" % (
-        s["plunge_count"], ", ".join(parts), 100 * s["coverage"], s["travel_length"], s["estimated_minutes"])
+    text = "%d plunges (%s), coverage %.2f %%, travel %.0f mm, about %.0f min; %s" % (
+        s["plunge_count"], ", ".join(parts), 100 * s["coverage"], s["travel_length"], s["estimated_minutes"],
+        stock_report(s))
     if plan.get("warnings"):
         text += "; " + "; ".join(plan["warnings"])
     selection = plan.get("tool_selection")

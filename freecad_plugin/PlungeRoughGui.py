@@ -34,6 +34,8 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             "FloorAllowance": PathGui.QuantitySpinBox(self.form.floorAllowance, obj, "FloorAllowance"),
             "ChordTolerance": PathGui.QuantitySpinBox(self.form.chordTolerance, obj, "ChordTolerance"),
             "PeckDepth": PathGui.QuantitySpinBox(self.form.peckDepth, obj, "PeckDepth"),
+            "MaxWallStock": PathGui.QuantitySpinBox(self.form.maxWallStock, obj, "MaxWallStock"),
+            "MaxFloorStock": PathGui.QuantitySpinBox(self.form.maxFloorStock, obj, "MaxFloorStock"),
         }
 
     def getTitle(self, obj):
@@ -95,6 +97,8 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             self.form.floorAllowance.editingFinished,
             self.form.chordTolerance.editingFinished,
             self.form.peckDepth.editingFinished,
+            self.form.maxWallStock.editingFinished,
+            self.form.maxFloorStock.editingFinished,
             self.form.useCannedCycle.stateChanged,
             self.form.autoSelectTools.stateChanged,
             self.form.strategy.currentIndexChanged,

@@ -54,6 +54,7 @@ int main(int argc, char** argv) {
     in.baseDir = slash == std::string::npos ? "." : input.substr(0, slash);
     const plunge::Plan plan = plunge::plan(in);
     writeFile(output, plunge::planToJson(plan));
+    std::cerr << "plunge-rough: " << plunge::planSummary(plan) << "\n";
     for (const std::string& w : plan.warnings) std::cerr << "warning: " << w << "\n";
     // The reasoning of an automatic tool choice, for the user (the JSON has it
     // too); on stderr, so that the plan on stdout stays valid JSON.

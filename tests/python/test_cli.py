@@ -31,7 +31,9 @@ def test_plans_every_shape(cli, tmp_path, name):
     out, svg, nc = tmp_path / "plan.json", tmp_path / "plan.svg", tmp_path / "plan.nc"
     res = run(cli, data, tmp_path, "-o", str(out), "--svg", str(svg), "--gcode", str(nc))
     assert res.returncode == 0, res.stderr
-    assert res.stderr == ""
+    # Standard error: the one-line summary with the stock left, no warning.
+    lines = res.stderr.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("plunge-rough: ") and "stock left: walls up to" in lines[0], lines
     plan = json.loads(out.read_text())
     stats = plan["stats"]
     assert stats["plunge_count"] == len(plan["plunges"]) > 0

@@ -13,6 +13,9 @@ std::string planToJson(const Plan& plan);
 // The pocket, its islands, every plunge disk coloured by tool, the tool paths,
 // what is left uncovered (red) and a legend (tool, count, coverage, travel).
 std::string planToSvg(const PlanInput& input, const Plan& plan);
+// One line for people: plunges per tool, then the stock left (wall band,
+// floor stock max/mean, volumes removed and left).
+std::string planSummary(const Plan& plan);
 // Explicit moves: tool change, rapid to safe_z, G1 plunge at the tool's feed, rapid back.
 std::string planToGcode(const PlanInput& input, const Plan& plan);
 
