@@ -388,7 +388,7 @@ def new_job():
     result["after_companion_delete"] = {
         "operations": [o.Label for o in job.Operations.Group],
         "diameters": sorted({p["diameter"] for p in plan["plunges"]}) if plan else None,
-        "coverage": plan["stats"]["coverage"] if plan else None}
+        "core_coverage": plan["stats"]["core_coverage"] if plan else None}
     step("companion deleted")
     # Delete the operation: no "referencing objects might break" question.
     FreeCADGui.Selection.clearSelection()

@@ -139,7 +139,7 @@ def test_cancel_undo_and_delete(result):
     assert result["after_undo"] == {"plunge_objects": [], "operations": []}
     assert len(result["after_redo"]["operations"]) == 3 and result["after_redo"]["plunges"] > 0
     deleted = result["after_companion_delete"]
-    assert len(deleted["operations"]) == 2 and deleted["diameters"] == [6, 20] and deleted["coverage"] > 0.99
+    assert len(deleted["operations"]) == 2 and deleted["diameters"] == [6, 20] and deleted["core_coverage"] > 0.9999
     assert result["after_op_delete"] == []
 
 

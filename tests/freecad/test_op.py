@@ -79,8 +79,9 @@ def test_flat_pocket_with_islands(doc):
     assert all(abs(z - (10 + 0.3)) < 1e-9 for *_, z in plunges)  # floor 10 mm + allowance
     assert_no_gouge(part, op.Base[0][1], plunges, op.StartDepth.Value, 0.5, 0.3)
     assert_touches(part, plunges, 0.3, every=5)
-    assert plan["stats"]["coverage"] >= 0.995
-    assert "coverage" in op.Summary and "min" in op.Summary
+    # The default 1 mm wall band: the core cut whole, no thicker wall stock, said in the summary.
+    assert plan["stats"]["core_coverage"] > 0.9999 and plan["stats"]["max_wall_stock_left"] <= 1.0 + 1e-9
+    assert "coverage" in op.Summary and "min" in op.Summary and "stock left: walls up to" in op.Summary
 
 
 def test_sculptured_floor_and_freeform_walls(doc):

@@ -81,7 +81,7 @@ def test_deleted_companion_is_never_silent(doc):
     doc.recompute()
     plan = PlungeRough.plan_of(op)
     assert plan and {p["diameter"] for p in plan["plunges"]} == {20, 6}
-    assert plan["stats"]["coverage"] > 0.99
+    assert plan["stats"]["core_coverage"] > 0.9999
 
 
 def test_inactive_operation_takes_its_companions_along(doc):
@@ -126,7 +126,8 @@ def test_summary_warnings_speak_freecad(doc):
     job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
     op.Strategy = "Grid (square)"
     doc.recompute()
-    assert "less than the 99.60 % asked for" in op.Summary and "min_coverage" not in op.Summary
+    assert "farther than 1.00 mm from the walls uncut" in op.Summary and "grid" in op.Summary
+    assert "max_wall_stock" not in op.Summary
     op.Strategy = "Packing"
     op.UseCannedCycle = True
     job.PostProcessor = "grbl"

@@ -86,7 +86,11 @@ def test_brep_floor_through_the_cli(cli, tmp_path):
     # The face spans about -21 .. -15.5 mm; every stop is on it plus the allowance.
     assert -21.5 < min(zs) and max(zs) < -14.5 and max(zs) - min(zs) > 2
     assert plan["stats"]["core_coverage"] > 0.99999
-    assert plan["stats"]["max_floor_stock_left"] <= 1.0 + 1e-9
+    # The default 1 mm floor stock limit, or the warning that the 6 mm plunger cannot reach it.
+    stats = plan["stats"]
+    assert stats["rest_plunges"] > 0
+    assert stats["max_floor_stock_left"] <= 1.0 + 1e-9 or any(
+        "stock stay above the floor" in w for w in plan.get("warnings", []))
 
 
 @pytest.mark.parametrize("floor,message", [
