@@ -24,7 +24,7 @@ def run(data, tmp):
     src, out = os.path.join(tmp, "in.json"), os.path.join(tmp, "out.json")
     with open(src, "w") as f:
         json.dump(data, f)
-    subprocess.run([CLI, "plan", src, "-o", out], check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([CLI, "plan", src, "-o", out], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     with open(out) as f:
         return json.load(f)
 
@@ -39,12 +39,13 @@ def main():
         for name in args.shapes:
             with open(os.path.join(SHAPES, name + ".json")) as f:
                 base = json.load(f)
-            runs = [("packing", {}), ("grid square", {"strategy": "grid", "grid": {"pattern": "square"}}),
+            runs = [("packing (1 mm band)", {}), ("grid square", {"strategy": "grid", "grid": {"pattern": "square"}}),
                     ("grid honeycomb", {"strategy": "grid", "grid": {"pattern": "honeycomb"}}), None]
             best_grid = 0.0
             for run_ in runs:
                 if run_ is None:  # packing stopped at the better grid's coverage: equal coverage
-                    run_ = ("packing at %.2f %%" % (100 * best_grid), {"min_coverage": best_grid})
+                    run_ = ("packing at %.2f %% (no band)" % (100 * best_grid),
+                            {"min_coverage": best_grid, "max_wall_stock": 0})
                 label, extra = run_
                 s = run(dict(base, **extra), tmp)["stats"]
                 if label.startswith("grid"):

@@ -31,7 +31,8 @@ def main():
             times, wall = [], []
             for _ in range(args.runs):
                 t0 = time.perf_counter()
-                subprocess.run([CLI, "plan", os.path.join(SHAPES, name + ".json"), "-o", out], check=True)
+                subprocess.run([CLI, "plan", os.path.join(SHAPES, name + ".json"), "-o", out], check=True,
+                               stderr=subprocess.DEVNULL)
                 wall.append(time.perf_counter() - t0)
                 times.append(json.load(open(out))["stats"]["planning_seconds"])
             s = json.load(open(out))["stats"]
