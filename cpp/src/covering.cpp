@@ -271,29 +271,37 @@ class Coverer {
       opt_.progress.tick();
       if (pieces_[i].alive) generateCandidates(static_cast<int>(i));
     }
-    // The greedy counts with circumscribed disks; the measurement is conservative.
-    // Where the two disagree about the target, cover a little more.
+    // With a band: the core whole (measured as planned, with inscribed disks).
     if (core_) {
       coverResidual(0.0);
-      std::vector<Circle> all;
-      for (const CoverDisk& d : result_.disks) all.push_back({d.center, d.radius});
-      result_.uncovered = uncoveredRegion(acc, all);
-      result_.coveredArea = result_.accessibleArea - poly::area(result_.uncovered);
-      result_.coreUncovered = uncoveredRegion(core, all);
+      measure(acc);
+      result_.coreUncovered = uncoveredRegion(core, diskCircles());
       return std::move(result_);
     }
+    // The greedy counts with circumscribed disks; the measurement is conservative.
+    // Where the two disagree about the target, cover a little more.
     double target = opt_.minCoverage * result_.accessibleArea;
     for (int round = 0;; ++round) {
       coverResidual(target);
-      std::vector<Circle> all;
-      for (const CoverDisk& d : result_.disks) all.push_back({d.center, d.radius});
-      result_.uncovered = uncoveredRegion(acc, all);
-      result_.coveredArea = result_.accessibleArea - poly::area(result_.uncovered);
+      measure(acc);
       const double shortBy = opt_.minCoverage * result_.accessibleArea - result_.coveredArea;
       if (shortBy <= 0.0 || round == 4) break;
       target += shortBy + 1e-4 * result_.accessibleArea;
     }
     return std::move(result_);
+  }
+
+ private:
+  std::vector<Circle> diskCircles() const {
+    std::vector<Circle> all;
+    for (const CoverDisk& d : result_.disks) all.push_back({d.center, d.radius});
+    return all;
+  }
+
+  // What the disks leave of the accessible region, with inscribed disks.
+  void measure(const Polygons& accessible) {
+    result_.uncovered = uncoveredRegion(accessible, diskCircles());
+    result_.coveredArea = result_.accessibleArea - poly::area(result_.uncovered);
   }
 
  private:

@@ -347,7 +347,9 @@ std::string planToSvg(const PlanInput& input, const Plan& plan) {
     << "\" stroke-width=\"" << sw << "\"/>\n";
   std::map<int, int> colour;  // tool id -> palette slot
   for (const ToolCount& t : plan.stats.perTool) colour.emplace(t.toolId, static_cast<int>(colour.size()));
-  if (plan.stockMap) s << stockMapSvg(*plan.stockMap, input.maxFloorStock);
+  // The stock map's colour scale: yellow at the limit (1 mm when none is set).
+  const double stockScale = input.maxFloorStock > 0.0 ? input.maxFloorStock : 1.0;
+  if (plan.stockMap) s << stockMapSvg(*plan.stockMap, stockScale);
   const char* fillOpacity = plan.stockMap ? "0.06" : "0.22";  // the stock map shows through
   for (const Plunge& p : plan.plunges) {
     const char* c = kPalette[colour[p.toolId] % 8];
@@ -406,10 +408,10 @@ std::string planToSvg(const PlanInput& input, const Plan& plan) {
   if (plan.stockMap) {
     for (int k = 0; k <= 4; ++k)
       s << "<rect x=\"" << lo.x + k * fs << "\" y=\"" << y + 0.2 * fs << "\" width=\"" << fs << "\" height=\"" << 0.8 * fs
-        << "\" fill=\"" << stockColour(0.5 * k * input.maxFloorStock, input.maxFloorStock) << "\"/>\n";
+        << "\" fill=\"" << stockColour(0.5 * k * stockScale, stockScale) << "\"/>\n";
     s << "<text x=\"" << lo.x + fs * 5.4 << "\" y=\"" << y + fs << "\" font-family=\"sans-serif\" font-size=\"" << fs
-      << "\">floor stock 0 to " << 2 * input.maxFloorStock << " mm (limit " << input.maxFloorStock
-      << " mm, yellow), max " << plan.stats.maxFloorStockLeft << " mm</text>\n";
+      << "\">floor stock 0 to " << 2 * stockScale << " mm (" << (input.maxFloorStock > 0.0 ? "limit " : "yellow ")
+      << stockScale << " mm), max " << plan.stats.maxFloorStockLeft << " mm</text>\n";
     y += 1.4 * fs;
   }
   if (depthDots) {

@@ -71,11 +71,11 @@ double wallRowSpacing(double r, double band) {
 }
 
 double wallRowInset(double r, double rho, double band) {
-  if (!(band > 0.0) || band >= r) return 0.0;
+  if (!(band > 0.0)) return 0.0;
   // Inner disks meet each other at 2 rho, so between two of them the cut reaches
   // sqrt(r^2 - rho^2) below their centres; the row cuts everything up to r - band
   // above its own centres. 2 % closer for curved walls and rounding.
-  return 0.98 * (r - band + std::sqrt(std::max(0.0, r * r - rho * rho)));
+  return 0.98 * std::max(0.0, r - band + std::sqrt(std::max(0.0, r * r - rho * rho)));
 }
 
 double holeDegree(double dMin, double r) { return 1.0 - std::clamp(dMin, 0.0, r) / r; }
@@ -103,9 +103,9 @@ class Packer {
     r_ = radius;
     c_ = radius + opt_.allowance;
     rho_ = radius * opt_.contactRatio;
-    // Wall rows: only where the band's chord is closer than the usual contact.
-    row_ = std::min(wallRowSpacing(radius, opt_.wallBand), 2 * rho_);
-    if (row_ >= 2 * rho_ - kTol) row_ = 0.0;
+    // A wall-row pass (a band): disks of this phase meet at the band's chord,
+    // or at the usual contact where that is closer (a band deep into the disk).
+    row_ = opt_.wallBand > 0.0 ? std::min(wallRowSpacing(radius, opt_.wallBand), 2 * rho_) : 0.0;
     proto_ = {{}, r_, rho_, tool_};
     cands_.clear();
     candIndex_.clear();
@@ -127,14 +127,14 @@ class Packer {
     Site g1, g2;
     double dMin;
     bool alive;
-    bool onWall;  // touches a wall: may meet the wall row's disks at the row spacing
   };
 
-  bool touchesWall(Vec2 p) const { return row_ > 0 && region_.wallDistance(p, c_ + 1e-6) <= c_ + 1e-6; }
+  bool touchesWall(Vec2 p) const { return region_.wallDistance(p, c_ + 1e-6) <= c_ + 1e-6; }
 
-  // Centre distance at which a new disk (on a wall or not) meets disk k.
-  double need(int k, bool onWall) const {
-    if (row_ > 0 && onWall && onWall_[k] && disks[k].tool == tool_) return row_;
+  // Centre distance at which a new disk meets disk k. In a wall-row pass every
+  // disk touches a wall, and those of this phase meet at the row spacing.
+  double need(int k) const {
+    if (row_ > 0 && disks[k].tool == tool_) return row_;
     return contactDistance(disks[k], proto_);
   }
   // Max hole degree first; ties by lowest y then x, so equal-degree placements grow
@@ -205,14 +205,14 @@ class Packer {
            dot(u, out.b - out.a) <= 1e-9 * nu * norm(out.b - out.a);
   }
 
-  bool disksClear(Vec2 p, bool onWall) const {
+  bool disksClear(Vec2 p) const {
     for (auto it = diskIndex_.qbegin(bgi::intersects(square(p, rho_ + maxReach_))); it != diskIndex_.qend(); ++it)
-      if (dist(p, disks[it->second].center) < need(it->second, onWall) - kTol) return false;
+      if (dist(p, disks[it->second].center) < need(it->second) - kTol) return false;
     return true;
   }
 
-  bool feasible(Vec2 p, bool onWall) const {
-    return region_.wallDistance(p, c_) >= c_ - kTol && disksClear(p, onWall) && region_.contains(p);
+  bool feasible(Vec2 p) const {
+    return region_.wallDistance(p, c_) >= c_ - kTol && disksClear(p) && region_.contains(p);
   }
 
   Vec2 tangentPoint(const Site& s, Vec2 p) const {
@@ -221,7 +221,7 @@ class Packer {
   }
 
   // d_min of eq. 4.68: gap to the nearest item other than the two tangent ones.
-  double dMinOf(Vec2 p, const Site& g1, const Site& g2, bool onWall) const {
+  double dMinOf(Vec2 p, const Site& g1, const Site& g2) const {
     double best = r_;
     std::vector<Vec2> touch;
     for (const Site* g : {&g1, &g2})
@@ -239,18 +239,17 @@ class Packer {
     for (auto it = diskIndex_.qbegin(bgi::intersects(square(p, reach))); it != diskIndex_.qend(); ++it) {
       const int k = it->second;
       if ((g1.kind == Site::Disk && g1.index == k) || (g2.kind == Site::Disk && g2.index == k)) continue;
-      best = std::min(best, dist(p, disks[k].center) - need(k, onWall));
+      best = std::min(best, dist(p, disks[k].center) - need(k));
     }
     return std::max(best, 0.0);
   }
 
   void addCandidate(Vec2 p, const Site& a, const Site& b) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) return;
-    const bool onWall = touchesWall(p);
-    if (row_ > 0 && !onWall) return;  // a wall-row pass places rows only
-    if (!vertexConeOk(a, p) || !vertexConeOk(b, p) || !feasible(p, onWall)) return;
+    if (row_ > 0 && !touchesWall(p)) return;  // a wall-row pass places rows only
+    if (!vertexConeOk(a, p) || !vertexConeOk(b, p) || !feasible(p)) return;
     const int id = static_cast<int>(cands_.size());
-    cands_.push_back({p, a, b, dMinOf(p, a, b, onWall), true, onWall});
+    cands_.push_back({p, a, b, dMinOf(p, a, b), true});
     candIndex_.insert({BPoint(p.x, p.y), id});
     queue_.insert(keyOf(id));
   }
@@ -262,8 +261,7 @@ class Packer {
     const Site& o = a.kind == Site::Wall ? b : a;
     if (a.kind == Site::Wall && b.kind == Site::Wall)
       pts = cornerPlacementsWallWall(walls[a.index], walls[b.index], c_);
-    else if (w.kind == Site::Wall && o.kind == Site::Disk && row_ > 0 && onWall_[o.index] &&
-             disks[o.index].tool == tool_)
+    else if (w.kind == Site::Wall && o.kind == Site::Disk && row_ > 0 && disks[o.index].tool == tool_)
       // The next disk of a wall row: on the wall, at the row spacing from a row disk.
       pts = cornerPlacementsWallCircle(walls[w.index], c_, {disks[o.index].center, row_});
     else if (w.kind == Site::Wall)
@@ -320,7 +318,6 @@ class Packer {
     PackedDisk d = proto_;
     d.center = p;
     disks.push_back(d);
-    onWall_.push_back(touchesWall(p));
     diskIndex_.insert({BPoint(p.x, p.y), k});
     maxReach_ = std::max(maxReach_, r_);
     // Candidates now overlapping die; those nearby may see a smaller d_min.
@@ -329,7 +326,7 @@ class Packer {
     for (const PointValue& h : hits) {
       Candidate& c = cands_[h.second];
       if (!c.alive) continue;
-      const double gap = dist(c.p, p) - need(k, c.onWall);
+      const double gap = dist(c.p, p) - need(k);
       if (gap < -kTol) {
         queue_.erase(keyOf(h.second));
         c.alive = false;
@@ -347,8 +344,7 @@ class Packer {
   PackedDisk proto_;  // the circle of this phase
   int tool_ = 0;
   double r_ = 0, c_ = 0, rho_ = 0, maxReach_ = 0;  // maxReach_: largest radius placed
-  double row_ = 0;  // wall row spacing of this phase (0: no band)
-  std::vector<char> onWall_;  // per disk: it touches a wall
+  double row_ = 0;  // wall-row pass: the row spacing of this phase (0: a plain packing)
   bool hasLattice_ = false;  // anchored at the first circle of the largest tool
   Vec2 latOrigin_, latDir_;
   std::vector<Candidate> cands_;

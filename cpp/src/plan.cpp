@@ -209,8 +209,9 @@ void floorStock(const PlanInput& in, const Region& region, const FloorSurface& f
   StockGrid grid(region, floor, in.radialAllowance, in.floorAllowance, in.maxWallStock,
                  stockSpacing(out.stats.regionArea, cutters.back().radius), progress);
   for (const CutDisk& d : disks) grid.cut(d, cutters[d.tool]);
-  const bool sculptured = !floor.isFlat() || cutters.front().shape != CutterShape::Flat ||
-                          cutters.back().shape != CutterShape::Flat;
+  const bool sculptured = !floor.isFlat() || std::any_of(cutters.begin(), cutters.end(), [](const Cutter& c) {
+                            return c.shape != CutterShape::Flat;
+                          });
   if (sculptured && in.maxFloorStock > 0.0) {
     progress.stage(0.85, "rest machining in Z");
     RestOptions ro;
@@ -253,7 +254,9 @@ void floorStock(const PlanInput& in, const Region& region, const FloorSurface& f
   out.stockMap = std::move(m);
 }
 
-void coverageStats(const PlanInput& in, const Region& region, const CoverResult& cover, Plan& out) {
+// core: the accessible region beyond the wall band (empty without a band).
+void coverageStats(const PlanInput& in, const Region& region, const Polygons& core, const CoverResult& cover,
+                   Plan& out) {
   const double rMax = 0.5 * in.tools.front().diameter;
   out.uncovered = cover.uncovered;
   out.stats.regionArea = poly::area(allowedRegion(region, in.radialAllowance));
@@ -265,14 +268,14 @@ void coverageStats(const PlanInput& in, const Region& region, const CoverResult&
   // otherwise (a grid, or no band) from the disks.
   Polygons coreLeft = cover.coreUncovered;
   out.stats.coreArea = cover.coreArea;
-  if (in.strategy == "grid" || in.maxWallStock <= 0.0) {
-    const Polygons core = in.maxWallStock > 0.0
-                              ? coreRegion(region, out.accessible, in.radialAllowance, in.maxWallStock)
-                              : out.accessible;
+  if (in.maxWallStock <= 0.0) {
+    out.stats.coreArea = cover.accessibleArea;
+    coreLeft = cover.uncovered;
+  } else if (in.strategy == "grid") {
     out.stats.coreArea = poly::area(core);
     std::vector<Circle> disks;
     for (const CoverDisk& d : cover.disks) disks.push_back({d.center, d.radius});
-    coreLeft = in.maxWallStock > 0.0 ? uncoveredRegion(core, disks) : cover.uncovered;
+    coreLeft = uncoveredRegion(core, disks);
   }
   out.stats.coreCoverage = out.stats.coreArea > 0 ? 1.0 - poly::area(coreLeft) / out.stats.coreArea : 1.0;
   out.stats.maxWallStockLeft = wallStockLeft(region, cover.uncovered, out.accessible, in.radialAllowance);
@@ -312,7 +315,9 @@ Plan plan(PlanInput in, const Progress& progress) {
     throw Error("no tool fits in the pocket: the smallest tool (diameter " + std::to_string(2 * rMin) +
                 ") with the radial allowance does not fit anywhere");
   }
-  if (in.maxWallStock > 0.0 && poly::area(coreRegion(region, out.accessible, in.radialAllowance, in.maxWallStock)) <= 0.0) {
+  const Polygons core =
+      in.maxWallStock > 0.0 ? coreRegion(region, out.accessible, in.radialAllowance, in.maxWallStock) : Polygons{};
+  if (in.maxWallStock > 0.0 && poly::area(core) <= 0.0) {
     std::ostringstream m;
     m << "max_wall_stock: a band of " << in.maxWallStock
       << " mm along the walls is the whole pocket, nothing would be cut (use a smaller band, or 0 to cover the"
@@ -324,7 +329,7 @@ Plan plan(PlanInput in, const Progress& progress) {
 
   progress.stage(0.05, "packing and covering");
   const CoverResult cover = placePlunges(in, region, radii, progress);
-  coverageStats(in, region, cover, out);
+  coverageStats(in, region, core, cover, out);
 
   progress.stage(0.75, "plunge depths");
   const Vec2 lo = region.minCorner(), hi = region.maxCorner();

@@ -118,7 +118,7 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
   // Highest first, so each added plunge goes where the step is worst.
   std::stable_sort(over.begin(), over.end(),
                    [&](size_t a, size_t b) { return grid.safeStock(a) > grid.safeStock(b); });
-  std::vector<char> isOver(grid.size(), 0), given(grid.size(), 0);
+  std::vector<char> isOver(grid.size(), 0);
   for (size_t k : over) isOver[k] = 1;
 
   // A plunge fixes a sample when it cuts the sample's whole neighbourhood low enough.
@@ -130,7 +130,7 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
   };
   for (size_t k : over) {
     opt.progress.tick();
-    if (!isOver[k] || given[k]) continue;
+    if (!isOver[k]) continue;
     const Vec2 p = grid.at(k);
     CutDisk best;
     int bestScore = 0;
@@ -145,7 +145,9 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
           centres.push_back(
               pushOffWalls(region, p + Vec2{std::cos(a * M_PI / 6), std::sin(a * M_PI / 6)} * (f * r), clearance));
       for (const Vec2& c : centres) {
-        if (dist(c, p) > r || !region.diskFits(c, clearance)) continue;
+        // Only a disk over the sample's whole neighbourhood can fix it (`fixes`):
+        // others are not worth a stop height.
+        if (dist(c, p) + h > r || !region.diskFits(c, clearance)) continue;
         CutDisk d{c, static_cast<int>(t), 0.0};
         try {
           d.z = depths.stopHeight(c, cutters[t]) + opt.floorAllowance;
@@ -165,7 +167,6 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
       }
     }
     if (bestScore == 0) {
-      given[k] = 1;
       ++out.unreachable;
       continue;
     }

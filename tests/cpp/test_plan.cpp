@@ -145,6 +145,25 @@ TEST_P(Shapes, InvariantsHold) {
   EXPECT_TRUE(today.warnings.empty());
 }
 
+// Bands reaching deep into the plunger's disk (here up to beyond its radius):
+// still one wall row and one packing inside it, never two packings on top of
+// each other, and never more plunges than covering without a band.
+TEST(Plan, DeepBandsPackOnce) {
+  PlanInput in = square();
+  in.tools = {{10, 1, 100}};
+  in.maxWallStock = 0;
+  const int today = plan(in).stats.plungeCount;
+  for (double band : {3.0, 4.0, 6.0}) {
+    in.maxWallStock = band;
+    const Plan p = plan(in);
+    EXPECT_LT(p.stats.plungeCount, today) << band;
+    EXPECT_LT(p.stats.coreArea * (1 - p.stats.coreCoverage), 0.01) << band;
+    for (size_t i = 0; i < p.plunges.size(); ++i)
+      for (size_t j = i + 1; j < p.plunges.size(); ++j)
+        EXPECT_GT(dist({p.plunges[i].x, p.plunges[i].y}, {p.plunges[j].x, p.plunges[j].y}), 1.0) << band;
+  }
+}
+
 // A band as wide as the pocket leaves nothing to cut: a clear error, not an empty plan.
 TEST(Plan, BandWiderThanThePocketIsAnError) {
   PlanInput in = square();

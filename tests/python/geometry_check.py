@@ -40,15 +40,11 @@ def assert_no_gouge(data, plan):
 
 def coverage(data, plan):
     """Covered fraction of the accessible region, measured with GEOS."""
-    pocket = Polygon(data["boundary"], data.get("islands", []))
-    radial = data.get("allowance", {}).get("radial", 0.0)
-    r_min = min(t["diameter"] for t in data["tools"]) / 2
-    accessible = pocket.buffer(-(radial + r_min), resolution=64).buffer(r_min, resolution=64)
-    disks = unary_union([Point(p["x"], p["y"]).buffer(p["diameter"] / 2, resolution=64) for p in plan["plunges"]])
+    _, _, accessible, disks = accessible_and_disks(data, plan)
     return accessible.intersection(disks).area / accessible.area
 
 
-def _accessible_and_disks(data, plan):
+def accessible_and_disks(data, plan):
     pocket = Polygon(data["boundary"], data.get("islands", []))
     radial = data.get("allowance", {}).get("radial", 0.0)
     tools = data["tools"] if isinstance(data["tools"], list) else data["tool_library"]
@@ -67,7 +63,7 @@ def _pieces(geometry):
 def core_left(data, plan, band):
     """Areas of the pieces of the core (the accessible region farther than
     radial allowance + band from the walls) that no plunge disk covers."""
-    pocket, radial, accessible, disks = _accessible_and_disks(data, plan)
+    pocket, radial, accessible, disks = accessible_and_disks(data, plan)
     # The planner leaves the last 0.01 mm of the accessible outline (polygon chord errors).
     core = pocket.buffer(-(radial + band), resolution=64).intersection(accessible.buffer(-0.02, resolution=64))
     return sorted(p.area for p in _pieces(core.difference(disks)))
@@ -77,7 +73,7 @@ def wall_stock_left(data, plan):
     """The thickest material along the walls the plunges leave, beyond the radial
     allowance: the farthest vertex of the uncovered pieces from the walls (vertices
     on the accessible outline are on a wall or in a corner no tool reaches)."""
-    pocket, radial, accessible, disks = _accessible_and_disks(data, plan)
+    pocket, radial, accessible, disks = accessible_and_disks(data, plan)
     loops = [data["boundary"]] + data.get("islands", [])
     outline = accessible.boundary
     worst = 0.0

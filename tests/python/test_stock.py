@@ -6,9 +6,9 @@ import random
 
 import numpy as np
 import pytest
-from shapely.geometry import Point, Polygon
+from shapely.geometry import Polygon
 
-from geometry_check import assert_no_gouge, core_left, wall_stock_left
+from geometry_check import accessible_and_disks, assert_no_gouge, core_left, wall_stock_left
 
 try:  # shapely 2
     from shapely import contains_xy
@@ -105,10 +105,7 @@ def floor_stock(data, plan, step=0.25):
     (farther than radial allowance + band from the walls, reachable by the
     smallest tool) that a plunge cuts: the lowest stop height of the flat plungers
     over it, minus the floor expression there."""
-    pocket = Polygon(data["boundary"], data.get("islands", []))
-    radial = data["allowance"]["radial"]
-    r_min = min(t["diameter"] for t in data["tools"]) / 2
-    accessible = pocket.buffer(-(radial + r_min), resolution=64).buffer(r_min, resolution=64)
+    pocket, radial, accessible, _ = accessible_and_disks(data, plan)
     core = pocket.buffer(-(radial + data.get("max_wall_stock", 1.0)), resolution=64).intersection(accessible)
     x0, y0, x1, y1 = core.bounds
     X, Y = np.meshgrid(np.arange(x0, x1, step), np.arange(y0, y1, step))
