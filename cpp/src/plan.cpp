@@ -315,8 +315,11 @@ Plan plan(PlanInput in, const Progress& progress) {
     throw Error("no tool fits in the pocket: the smallest tool (diameter " + std::to_string(2 * rMin) +
                 ") with the radial allowance does not fit anywhere");
   }
-  const Polygons core =
-      in.maxWallStock > 0.0 ? coreRegion(region, out.accessible, in.radialAllowance, in.maxWallStock) : Polygons{};
+  // A band wider than half the pocket's extent leaves no core (and is no offset to compute).
+  const bool bandFits = in.maxWallStock < 0.5 * dist(region.minCorner(), region.maxCorner());
+  const Polygons core = in.maxWallStock > 0.0 && bandFits
+                            ? coreRegion(region, out.accessible, in.radialAllowance, in.maxWallStock)
+                            : Polygons{};
   if (in.maxWallStock > 0.0 && poly::area(core) <= 0.0) {
     std::ostringstream m;
     m << "max_wall_stock: a band of " << in.maxWallStock

@@ -169,6 +169,8 @@ TEST(Plan, BandWiderThanThePocketIsAnError) {
   PlanInput in = square();
   in.maxWallStock = 45;  // the square is 80 mm wide
   EXPECT_NE(planError(in).find("max_wall_stock"), std::string::npos);
+  in.maxWallStock = 1e308;  // beyond any polygon offset
+  EXPECT_NE(planError(in).find("is the whole pocket"), std::string::npos);
   in.maxWallStock = -1;
   EXPECT_NE(planError(in).find("max_wall_stock must be >= 0"), std::string::npos);
   in.maxWallStock = 1;
