@@ -410,8 +410,8 @@ std::string planToSvg(const PlanInput& input, const Plan& plan) {
       s << "<rect x=\"" << lo.x + k * fs << "\" y=\"" << y + 0.2 * fs << "\" width=\"" << fs << "\" height=\"" << 0.8 * fs
         << "\" fill=\"" << stockColour(0.5 * k * stockScale, stockScale) << "\"/>\n";
     s << "<text x=\"" << lo.x + fs * 5.4 << "\" y=\"" << y + fs << "\" font-family=\"sans-serif\" font-size=\"" << fs
-      << "\">floor stock 0 to " << 2 * stockScale << " mm (" << (input.maxFloorStock > 0.0 ? "limit " : "yellow ")
-      << stockScale << " mm), max " << plan.stats.maxFloorStockLeft << " mm</text>\n";
+      << "\">floor stock, " << (input.maxFloorStock > 0.0 ? "limit " : "yellow ") << stockScale << ": max "
+      << plan.stats.maxFloorStockLeft << " mm</text>\n";
     y += 1.4 * fs;
   }
   if (depthDots) {
