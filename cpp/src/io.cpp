@@ -48,7 +48,10 @@ std::vector<Tool> toolList(const json& ts, const std::string& what) {
   for (size_t i = 0; i < ts.size(); ++i) {
     const std::string name = what + "[" + std::to_string(i) + "]";
     if (!ts[i].is_object()) throw Error(name + ": expected an object with a diameter");
-    onlyKeys(ts[i], {"diameter", "id", "feed", "shape", "corner_radius"}, name + ": ");
+    onlyKeys(ts[i],
+             {"diameter", "id", "feed", "shape", "corner_radius", "max_engagement", "min_engagement",
+              "center_cutting", "core_diameter", "flute_length"},
+             name + ": ");
     if (!ts[i].contains("diameter")) throw Error(name + ".diameter: required");
     Tool t;
     t.diameter = number(ts[i]["diameter"], name + ".diameter");
@@ -69,6 +72,20 @@ std::vector<Tool> toolList(const json& ts, const std::string& what) {
       else throw Error(name + ".shape: expected \"flat\", \"ball\" or \"bull\"");
     }
     if (ts[i].contains("corner_radius")) t.cornerRadius = number(ts[i]["corner_radius"], name + ".corner_radius");
+    // A real plunge mill (absent: no limit). A given limit must be a positive length.
+    auto limit = [&](const char* key, double& v) {
+      if (!ts[i].contains(key)) return;
+      v = number(ts[i][key], name + "." + key);
+      if (!(v > 0.0)) throw Error(name + "." + key + " must be > 0 (leave it out for no limit)");
+    };
+    limit("max_engagement", t.maxEngagement);
+    limit("min_engagement", t.minEngagement);
+    limit("flute_length", t.fluteLength);
+    limit("core_diameter", t.coreDiameter);
+    if (ts[i].contains("center_cutting")) {
+      if (!ts[i]["center_cutting"].is_boolean()) throw Error(name + ".center_cutting: expected true or false");
+      t.centerCutting = ts[i]["center_cutting"].get<bool>();
+    }
     tools.push_back(t);
   }
   // Default tool numbers: 1, 2, ... by decreasing diameter.
@@ -101,7 +118,8 @@ PlanInput planInputFromJson(const std::string& text) {
   onlyKeys(j,
            {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",
             "min_coverage", "contact_ratio", "packing_order", "sequencing", "start", "tool_library", "selection",
-            "time_model", "grid", "max_wall_stock", "max_floor_stock"},
+            "time_model", "grid", "max_wall_stock", "max_floor_stock", "lead_out", "stock_aware_heights",
+            "rapid_clearance"},
            "input: ");
   PlanInput in;
   if (j.contains("version") && !(j["version"].is_number_integer() && j["version"].get<long long>() == 1))
@@ -160,6 +178,12 @@ PlanInput planInputFromJson(const std::string& text) {
   if (j.contains("min_coverage")) in.minCoverage = number(j["min_coverage"], "min_coverage");
   if (j.contains("max_wall_stock")) in.maxWallStock = number(j["max_wall_stock"], "max_wall_stock");
   if (j.contains("max_floor_stock")) in.maxFloorStock = number(j["max_floor_stock"], "max_floor_stock");
+  if (j.contains("lead_out")) in.leadOut = number(j["lead_out"], "lead_out");
+  if (j.contains("rapid_clearance")) in.rapidClearance = number(j["rapid_clearance"], "rapid_clearance");
+  if (j.contains("stock_aware_heights")) {
+    if (!j["stock_aware_heights"].is_boolean()) throw Error("stock_aware_heights: expected true or false");
+    in.stockAwareHeights = j["stock_aware_heights"].get<bool>();
+  }
   if (j.contains("contact_ratio")) in.contactRatio = number(j["contact_ratio"], "contact_ratio");
   if (j.contains("packing_order")) {
     if (!j["packing_order"].is_string()) throw Error("packing_order: expected a string");
@@ -200,8 +224,21 @@ PlanInput planInputFromJson(const std::string& text) {
 std::string planToJson(const Plan& plan) {
   json out;
   out["plunges"] = json::array();
-  for (const Plunge& p : plan.plunges)
-    out["plunges"].push_back({{"x", p.x}, {"y", p.y}, {"diameter", p.diameter}, {"tool_id", p.toolId}, {"z", p.z}});
+  for (const Plunge& p : plan.plunges) {
+    json o = {{"x", p.x},
+              {"y", p.y},
+              {"diameter", p.diameter},
+              {"tool_id", p.toolId},
+              {"z", p.z},
+              {"approach_z", p.approachZ},
+              {"retract_z", p.retractZ},
+              {"engagement", p.engagement},
+              {"level", p.level},
+              {"start", p.start},
+              {"start_hole", p.startHole}};
+    if (p.leadOut) o["lead_out"] = {p.leadOut->x, p.leadOut->y};
+    out["plunges"].push_back(o);
+  }
   const PlanStats& s = plan.stats;
   json per = json::array();
   for (const ToolCount& t : s.perTool) per.push_back({{"tool_id", t.toolId}, {"diameter", t.diameter}, {"count", t.count}});
@@ -222,7 +259,12 @@ std::string planToJson(const Plan& plan) {
                   {"mean_floor_stock", s.meanFloorStock},
                   {"volume_removed", s.volumeRemoved},
                   {"volume_left", s.volumeLeft},
-                  {"rest_plunges", s.restPlunges}};
+                  {"rest_plunges", s.restPlunges},
+                  {"start_holes", s.startHoles},
+                  {"over_engaged", s.overEngaged},
+                  {"thin_cuts", s.thinCuts},
+                  {"levels", s.levels},
+                  {"minutes_at_safe_height", s.minutesAtSafeHeight}};
   if (!plan.warnings.empty()) out["warnings"] = plan.warnings;
   if (plan.selection) {
     const ToolSelection& sel = *plan.selection;
@@ -436,6 +478,11 @@ std::string planSummary(const Plan& plan) {
     << " % of the core cut), floor up to " << st.maxFloorStockLeft << " mm (mean " << st.meanFloorStock << " mm); "
     << std::setprecision(1) << st.volumeRemoved / 1000 << " cm3 removed, " << st.volumeLeft / 1000 << " cm3 left";
   if (st.restPlunges) s << "; " << st.restPlunges << " plunges added for the floor stock";
+  if (st.startHoles) s << "; " << st.startHoles << " start holes";
+  if (st.levels > 1) s << "; " << st.levels << " levels (flute length)";
+  s << "; about " << st.estimatedMinutes << " min";
+  if (st.minutesAtSafeHeight > st.estimatedMinutes + 0.05)
+    s << " (" << st.minutesAtSafeHeight - st.estimatedMinutes << " min saved by stock-aware heights)";
   return s.str();
 }
 
@@ -459,9 +506,14 @@ std::string planToGcode(const PlanInput& input, const Plan& plan) {
       s << "G0 Z" << input.safeZ << "\n";
       current = p.toolId;
     }
+    if (p.startHole) s << "(start hole)\n";
+    // Rapid over at the last retract height, down to the approach height, feed
+    // through the material, lead out, rapid up only as high as the next move needs.
     s << "G0 X" << p.x << " Y" << p.y << "\n";
+    s << "G0 Z" << p.approachZ << "\n";
     s << "G1 Z" << p.z << " F" << feed[p.toolId] << "\n";
-    s << "G0 Z" << input.safeZ << "\n";
+    if (p.leadOut) s << "G1 X" << p.leadOut->x << " Y" << p.leadOut->y << "\n";
+    s << "G0 Z" << p.retractZ << "\n";
   }
   if (current >= 0) s << "M5\n";
   s << "M30\n";

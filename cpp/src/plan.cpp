@@ -12,6 +12,9 @@
 
 #include "plunge/covering.hpp"
 #include "plunge/depth.hpp"
+#include "plunge/engagement.hpp"
+#include "plunge/heightfield.hpp"
+#include "plunge/motion.hpp"
 #include "plunge/error.hpp"
 #include "plunge/floor.hpp"
 #include "plunge/grid.hpp"
@@ -26,6 +29,25 @@ namespace {
 
 void requireFinite(double v, const std::string& what) {
   if (!std::isfinite(v)) throw Error(what + " is not a finite number");
+}
+
+// A real plunge mill's limits (engagement.hpp, motion.hpp); 0 is no limit.
+void validateMill(const Tool& t, const std::string& name) {
+  for (double v : {t.maxEngagement, t.minEngagement, t.coreDiameter, t.fluteLength})
+    if (!std::isfinite(v) || v < 0.0)
+      throw Error(name + ": max_engagement, min_engagement, core_diameter and flute_length must be >= 0");
+  if (t.maxEngagement > 0.0 && t.maxEngagement < 0.05 * t.diameter)
+    throw Error(name + ".max_engagement is below 5 % of the diameter: too many plunges to plan (is it in mm?)");
+  if (t.minEngagement >= t.diameter) throw Error(name + ".min_engagement must be below the diameter");
+  if (t.maxEngagement > 0.0 && t.minEngagement > t.maxEngagement)
+    throw Error(name + ".min_engagement is above its max_engagement");
+  if (t.centerCutting && t.coreDiameter > 0.0)
+    throw Error(name + ".core_diameter is for tools that do not cut at the centre (\"center_cutting\": false)");
+  if (!t.centerCutting && !(t.coreDiameter > 0.0 && t.coreDiameter < 0.9 * t.diameter))
+    throw Error(name + ": a tool that does not cut at the centre needs its core_diameter, above 0 and below 90 % of"
+                       " the diameter");
+  if (t.fluteLength > 0.0 && t.fluteLength <= cutterProfile(cutterOf(t), 0.5 * t.diameter) + 0.1)
+    throw Error(name + ".flute_length must exceed the corner radius by 0.1 mm or more");
 }
 
 }  // namespace
@@ -53,9 +75,12 @@ void validate(PlanInput& in) {
     } else if (t.cornerRadius != 0.0) {
       throw Error(name + ".corner_radius is for bull-nose tools (\"shape\": \"bull\")");
     }
+    validateMill(t, name);
   }
   std::stable_sort(in.tools.begin(), in.tools.end(),
                    [](const Tool& a, const Tool& b) { return a.diameter > b.diameter; });
+  for (const Tool& t : in.tools)
+    if (!t.centerCutting) startHoleTool(in.tools, t);  // throws naming the fix
   requireFinite(in.topZ, "top_z");
   requireFinite(in.safeZ, "safe_z");
   requireFinite(in.radialAllowance, "allowance.radial");
@@ -97,23 +122,39 @@ void validate(PlanInput& in) {
   if (in.maxWallStock < 0.0) throw Error("max_wall_stock must be >= 0 (0: cover down to min_coverage)");
   requireFinite(in.maxFloorStock, "max_floor_stock");
   if (in.maxFloorStock < 0.0) throw Error("max_floor_stock must be >= 0 (0: no rest plunges)");
+  requireFinite(in.leadOut, "lead_out");
+  if (in.leadOut < 0.0) throw Error("lead_out must be >= 0 (0: retract straight up)");
+  requireFinite(in.rapidClearance, "rapid_clearance");
+  if (in.rapidClearance <= 0.0) throw Error("rapid_clearance must be > 0");
   if (in.start) {
     requireFinite(in.start->x, "start.x");
     requireFinite(in.start->y, "start.y");
   }
 }
 
-namespace {
-
 Cutter cutterOf(const Tool& t) {
   return {t.shape, 0.5 * t.diameter, t.shape == CutterShape::Ball ? 0.5 * t.diameter : t.cornerRadius};
 }
+
+namespace {
 
 std::unique_ptr<FloorSurface> makeFloor(const PlanInput& in) {
   if (in.floor.kind == Floor::Kind::Flat) return makeFlatFloor(in.floor.z);
   if (in.floor.kind == Floor::Kind::Expression) return makeExpressionFloor(in.floor.expression);
   const std::string& f = in.floor.brep;
   return makeBrepFloor(f.front() == '/' || in.baseDir.empty() ? f : in.baseDir + "/" + f);
+}
+
+int toolIndex(const PlanInput& in, int id) {
+  for (size_t t = 0; t < in.tools.size(); ++t)
+    if (in.tools[t].id == id) return static_cast<int>(t);
+  throw Error("internal: a plunge of an unknown tool");
+}
+
+// A floor or a plunger that is not flat: plunges stop at different heights.
+bool isSculptured(const PlanInput& in, const FloorSurface& floor) {
+  return !floor.isFlat() || std::any_of(in.tools.begin(), in.tools.end(),
+                                        [](const Tool& t) { return t.shape != CutterShape::Flat; });
 }
 
 // Packing and covering, or the grid: the plunge positions of every tool.
@@ -193,43 +234,56 @@ void sequence(const PlanInput& in, const std::vector<CutDisk>& disks, Plan& out)
     for (int i : tour(pts, false, at, to)) {
       const Vec2 p = pts[i];
       if (!out.plunges.empty()) out.stats.travelLength += dist({out.plunges.back().x, out.plunges.back().y}, p);
-      out.plunges.push_back({p.x, p.y, in.tools[t].diameter, in.tools[t].id, mine[i]->z});
+      Plunge made;
+      made.x = p.x;
+      made.y = p.y;
+      made.diameter = in.tools[t].diameter;
+      made.toolId = in.tools[t].id;
+      made.z = mine[i]->z;
+      out.plunges.push_back(made);
       at = p;
     }
     out.stats.perTool.push_back({in.tools[t].id, in.tools[t].diameter, static_cast<int>(pts.size())});
   }
 }
 
-// The stock the plan leaves on the floor (and the volumes), after the rest step
-// in Z has added plunges where a sculptured floor keeps more than asked for.
-void floorStock(const PlanInput& in, const Region& region, const FloorSurface& floor, const DepthSolver& depths,
-                std::vector<CutDisk>& disks, Plan& out, const Progress& progress) {
+// The rest step in Z: plunges added where a sculptured floor keeps more stock
+// than asked for (stock.hpp).
+void restStep(const PlanInput& in, const Region& region, const FloorSurface& floor, const DepthSolver& depths,
+              std::vector<CutDisk>& disks, Plan& out, const Progress& progress) {
+  std::vector<Cutter> cutters;
+  for (const Tool& t : in.tools) cutters.push_back(cutterOf(t));
+  if (!isSculptured(in, floor) || in.maxFloorStock <= 0.0) return;
+  StockGrid grid(region, floor, in.radialAllowance, in.floorAllowance, in.maxWallStock,
+                 stockSpacing(out.stats.regionArea, cutters.back().radius), progress);
+  for (const CutDisk& d : disks) grid.cut(d, cutters[d.tool]);
+  progress.stage(0.85, "rest machining in Z");
+  RestOptions ro;
+  ro.maxFloorStock = in.maxFloorStock;
+  ro.radialAllowance = in.radialAllowance;
+  ro.floorAllowance = in.floorAllowance;
+  ro.topZ = in.topZ;
+  ro.progress = progress;
+  const RestResult rest = restInZ(region, depths, cutters, grid, ro);
+  disks.insert(disks.end(), rest.added.begin(), rest.added.end());
+  out.stats.restPlunges = static_cast<int>(rest.added.size());
+}
+
+// The stock the plan's plunges leave on the floor, and the volumes.
+void floorStock(const PlanInput& in, const Region& region, const FloorSurface& floor, Plan& out,
+                const Progress& progress) {
   std::vector<Cutter> cutters;
   for (const Tool& t : in.tools) cutters.push_back(cutterOf(t));
   StockGrid grid(region, floor, in.radialAllowance, in.floorAllowance, in.maxWallStock,
                  stockSpacing(out.stats.regionArea, cutters.back().radius), progress);
-  for (const CutDisk& d : disks) grid.cut(d, cutters[d.tool]);
-  const bool sculptured = !floor.isFlat() || std::any_of(cutters.begin(), cutters.end(), [](const Cutter& c) {
-                            return c.shape != CutterShape::Flat;
-                          });
-  if (sculptured && in.maxFloorStock > 0.0) {
-    progress.stage(0.85, "rest machining in Z");
-    RestOptions ro;
-    ro.maxFloorStock = in.maxFloorStock;
-    ro.radialAllowance = in.radialAllowance;
-    ro.floorAllowance = in.floorAllowance;
-    ro.topZ = in.topZ;
-    ro.progress = progress;
-    const RestResult rest = restInZ(region, depths, cutters, grid, ro);
-    disks.insert(disks.end(), rest.added.begin(), rest.added.end());
-    out.stats.restPlunges = static_cast<int>(rest.added.size());
-  }
+  for (const Plunge& p : out.plunges) grid.cut({{p.x, p.y}, toolIndex(in, p.toolId), p.z}, cutters[toolIndex(in, p.toolId)]);
+  const bool sculptured = isSculptured(in, floor);
   const StockReport r = measureStock(grid, in.topZ);
   out.stats.maxFloorStockLeft = r.maxFloorStock;
   out.stats.meanFloorStock = r.meanFloorStock;
   out.stats.volumeRemoved = r.volumeRemoved;
   out.stats.volumeLeft = r.volumeLeft;
-  if (in.maxFloorStock > 0.0 && r.maxFloorStock > in.maxFloorStock + 1e-6) {
+  if (sculptured && in.maxFloorStock > 0.0 && r.maxFloorStock > in.maxFloorStock + 1e-6) {
     std::ostringstream w;
     w << std::fixed << std::setprecision(2) << "up to " << r.maxFloorStock
       << " mm of stock stay above the floor, more than the " << in.maxFloorStock
@@ -252,6 +306,36 @@ void floorStock(const PlanInput& in, const Region& region, const FloorSurface& f
     if (std::isnan(cell) || s > cell) cell = static_cast<float>(s);
   }
   out.stockMap = std::move(m);
+}
+
+// What the final plunges cut, as a covering's result (when the engagement
+// limits replaced the covering's plunges).
+CoverResult coverOf(const PlanInput& in, const Plan& out, const Polygons& core) {
+  CoverResult c;
+  std::vector<Circle> circles;
+  for (const Plunge& p : out.plunges) {
+    circles.push_back({{p.x, p.y}, 0.5 * p.diameter});
+    c.disks.push_back({{p.x, p.y}, 0.5 * p.diameter, toolIndex(in, p.toolId)});
+  }
+  c.accessibleArea = poly::area(out.accessible);
+  c.uncovered = uncoveredRegion(out.accessible, circles);
+  c.coveredArea = c.accessibleArea - poly::area(c.uncovered);
+  c.coreArea = poly::area(core);
+  c.coreUncovered = uncoveredRegion(core, circles);
+  return c;
+}
+
+// Plunges per tool (largest first) and start holes.
+void countPlunges(const PlanInput& in, Plan& out) {
+  out.stats.perTool.clear();
+  for (const Tool& t : in.tools) {
+    const int n = static_cast<int>(std::count_if(out.plunges.begin(), out.plunges.end(),
+                                                 [&](const Plunge& p) { return p.toolId == t.id; }));
+    if (n > 0) out.stats.perTool.push_back({t.id, t.diameter, n});
+  }
+  out.stats.startHoles = static_cast<int>(
+      std::count_if(out.plunges.begin(), out.plunges.end(), [](const Plunge& p) { return p.startHole; }));
+  out.stats.plungeCount = static_cast<int>(out.plunges.size());
 }
 
 // core: the accessible region beyond the wall band (empty without a band).
@@ -332,18 +416,30 @@ Plan plan(PlanInput in, const Progress& progress) {
 
   progress.stage(0.05, "packing and covering");
   const CoverResult cover = placePlunges(in, region, radii, progress);
-  coverageStats(in, region, core, cover, out);
+  out.stats.regionArea = poly::area(allowedRegion(region, in.radialAllowance));
 
   progress.stage(0.75, "plunge depths");
   const Vec2 lo = region.minCorner(), hi = region.maxCorner();
   const DepthSolver depths(*floor, lo, hi, std::max(0.5 * rMin, 1e-3 * dist(lo, hi)));
   std::vector<CutDisk> disks = depthsOf(in, cover, depths, progress);
-  floorStock(in, region, *floor, depths, disks, out, progress);
+  restStep(in, region, *floor, depths, disks, out, progress);
 
   progress.stage(0.9, "ordering the plunges");
   sequence(in, disks, out);
-  out.stats.plungeCount = static_cast<int>(out.plunges.size());
-  out.stats.estimatedMinutes = estimateMinutes(out, in.tools, in.safeZ, in.timeModel);
+  // Real plunge mills: engagement limits and cores (positions and order grown
+  // together), flute length (levels), then heights and lead-outs.
+  const bool limited = std::any_of(in.tools.begin(), in.tools.end(),
+                                   [](const Tool& t) { return std::isfinite(engagementLimit(t)); });
+  if (limited) {
+    progress.stage(0.92, "growing the cut within the engagement limits");
+    HeightField stock = stockOf(in, region);
+    out.plunges = growWithinLimits(in, region, depths, out.plunges, stock, progress);
+  }
+  out.plunges = splitIntoLevels(in, region, out.plunges, out.stats);
+  coverageStats(in, region, core, limited ? coverOf(in, out, core) : cover, out);
+  planMotion(in, region, depths, out);
+  floorStock(in, region, *floor, out, progress);
+  countPlunges(in, out);
   out.stats.planningSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

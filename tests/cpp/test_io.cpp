@@ -101,7 +101,8 @@ TEST(Io, SvgDrawsEveryPlungeAndALegend) {
 }
 
 // The G-code parsed back gives the plan: one tool change per tool, one feed
-// plunge per plunge at its depth and position, every rapid at the safe height.
+// plunge per plunge at its depth and position, from its approach height, its
+// lead-out, and rapids across at the retract height the plan gives.
 TEST(Io, GcodeParsesBackToThePlan) {
   PlanInput in = planInputFromJson(base().dump());
   const Plan p = plan(in);
@@ -110,6 +111,7 @@ TEST(Io, GcodeParsesBackToThePlan) {
   double x = NAN, y = NAN, z = NAN;
   int tool = -1;
   std::vector<Plunge> seen;
+  std::vector<double> rapidHeights;  // z of each rapid across, before each plunge
   std::vector<int> changes;
   while (std::getline(g, line)) {
     if (line.empty() || line[0] == '(') continue;
@@ -126,23 +128,44 @@ TEST(Io, GcodeParsesBackToThePlan) {
       changes.push_back(tool);
     }
     const bool rapid = !codes.empty() && codes[0] == "G0", feed = !codes.empty() && codes[0] == "G1";
+    if (rapid && (v.count('X') || v.count('Y'))) rapidHeights.push_back(z);
+    if (feed && v.count('Z')) {
+      EXPECT_TRUE(v.count('F'));
+      Plunge q;
+      q.x = x;
+      q.y = y;
+      q.toolId = tool;
+      q.approachZ = z;  // where the feed starts
+      q.z = v['Z'];
+      seen.push_back(q);
+    } else if (feed) {
+      ASSERT_FALSE(seen.empty());
+      seen.back().leadOut = Vec2{v['X'], v['Y']};
+    }
     if (v.count('X')) x = v['X'];
     if (v.count('Y')) y = v['Y'];
     if (v.count('Z')) z = v['Z'];
-    if (rapid && (v.count('X') || v.count('Y'))) {
-      EXPECT_DOUBLE_EQ(z, in.safeZ) << "rapid below the safe height";
-    }
-    if (feed) {
-      EXPECT_TRUE(v.count('F'));
-      seen.push_back({x, y, 0, tool, z});
-    }
   }
   ASSERT_EQ(seen.size(), p.plunges.size());
+  ASSERT_EQ(rapidHeights.size(), p.plunges.size());
+  int leadOuts = 0;
   for (size_t i = 0; i < seen.size(); ++i) {
-    EXPECT_NEAR(seen[i].x, p.plunges[i].x, 1e-4);
-    EXPECT_NEAR(seen[i].y, p.plunges[i].y, 1e-4);
-    EXPECT_NEAR(seen[i].z, p.plunges[i].z, 1e-4);
-    EXPECT_EQ(seen[i].toolId, p.plunges[i].toolId);
+    const Plunge& q = p.plunges[i];
+    EXPECT_NEAR(seen[i].x, q.x, 1e-4);
+    EXPECT_NEAR(seen[i].y, q.y, 1e-4);
+    EXPECT_NEAR(seen[i].z, q.z, 1e-4);
+    EXPECT_NEAR(seen[i].approachZ, q.approachZ, 1e-4);
+    EXPECT_EQ(seen[i].toolId, q.toolId);
+    ASSERT_EQ(seen[i].leadOut.has_value(), q.leadOut.has_value());
+    if (q.leadOut) {
+      ++leadOuts;
+      EXPECT_NEAR(dist(*seen[i].leadOut, *q.leadOut), 0.0, 1e-3);
+    }
+    // Across at the previous plunge's retract height (safe_z after a tool change).
+    const bool first = i == 0 || p.plunges[i - 1].toolId != q.toolId;
+    EXPECT_NEAR(rapidHeights[i], first ? in.safeZ : p.plunges[i - 1].retractZ, 1e-4);
+    EXPECT_LE(q.approachZ, rapidHeights[i] + 1e-4);
   }
+  EXPECT_GT(leadOuts, 0);
   EXPECT_EQ(changes.size(), p.stats.perTool.size());
 }

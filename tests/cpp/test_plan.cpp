@@ -52,9 +52,12 @@ TEST(Plan, OrderDepthAndStats) {
   EXPECT_LE(p.stats.maxWallStockLeft, 1.0 + 1e-9);
   EXPECT_NEAR(p.stats.coverage, p.stats.coveredArea / p.stats.accessibleArea, 1e-12);
   EXPECT_LT(p.stats.accessibleArea, p.stats.regionArea);
+  // Travel: from each plunge's lead-out end (or its centre) to the next plunge.
   double travel = 0;
-  for (size_t i = 1; i < p.plunges.size(); ++i)
-    travel += dist({p.plunges[i - 1].x, p.plunges[i - 1].y}, {p.plunges[i].x, p.plunges[i].y});
+  for (size_t i = 1; i < p.plunges.size(); ++i) {
+    const Plunge& q = p.plunges[i - 1];
+    travel += dist(q.leadOut ? *q.leadOut : Vec2{q.x, q.y}, {p.plunges[i].x, p.plunges[i].y});
+  }
   EXPECT_NEAR(p.stats.travelLength, travel, 1e-9);
 }
 

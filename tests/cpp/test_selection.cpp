@@ -29,14 +29,28 @@ TEST(Selection, TimeModelAddsUpThePlan) {
   const Plan p = plan(in);
   std::map<int, double> feed;
   for (const Tool& t : in.tools) feed[t.id] = t.feed;
-  double minutes = 0.0, travel = 0.0;
-  for (size_t i = 0; i < p.plunges.size(); ++i) {
-    const double depth = in.safeZ - p.plunges[i].z;
-    minutes += depth / feed[p.plunges[i].toolId] + depth / 4000.0;
-    if (i) travel += std::hypot(p.plunges[i].x - p.plunges[i - 1].x, p.plunges[i].y - p.plunges[i - 1].y);
-  }
-  minutes += travel / 8000.0 + p.stats.perTool.size() * 0.5;
-  EXPECT_NEAR(p.stats.estimatedMinutes, minutes, 1e-9 * minutes);
+  // Each plunge: rapid down from the last retract height to its approach
+  // height, feed to depth and along the lead-out, rapid up to its retract
+  // height; rapids between plunges; a tool change per tool.
+  auto minutes = [&](bool atSafe) {
+    double m = 0.0, z = in.safeZ;
+    for (size_t i = 0; i < p.plunges.size(); ++i) {
+      const Plunge& q = p.plunges[i];
+      const double approach = atSafe ? in.safeZ : q.approachZ, retract = atSafe ? in.safeZ : q.retractZ;
+      m += (z - approach) / 4000.0 + (approach - q.z) / feed[q.toolId] + (retract - q.z) / 4000.0;
+      if (q.leadOut) m += dist(*q.leadOut, {q.x, q.y}) / feed[q.toolId];
+      if (i) {
+        const Plunge& b = p.plunges[i - 1];
+        m += dist(b.leadOut ? *b.leadOut : Vec2{b.x, b.y}, {q.x, q.y}) / 8000.0;
+      }
+      z = retract;
+    }
+    return m + p.stats.perTool.size() * 0.5;
+  };
+  EXPECT_NEAR(p.stats.estimatedMinutes, minutes(false), 1e-9 * minutes(false));
+  EXPECT_NEAR(p.stats.minutesAtSafeHeight, minutes(true), 1e-9 * minutes(true));
+  // Feeding only through material saves time.
+  EXPECT_LT(p.stats.estimatedMinutes, p.stats.minutesAtSafeHeight);
 }
 
 TEST(Selection, BranchAndBoundFindsTheEnumeratedOptimum) {

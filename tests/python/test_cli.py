@@ -54,9 +54,10 @@ def test_plans_every_shape(cli, tmp_path, name):
     root = ET.parse(svg).getroot()
     circles = root.findall("{http://www.w3.org/2000/svg}circle")
     assert len(circles) == len(plan["plunges"]) + len(stats["per_tool"])
-    # The G-code: one feed move per plunge.
+    # The G-code: one feed move down per plunge, one across per lead-out.
     feeds = [line for line in nc.read_text().splitlines() if line.startswith("G1 ")]
-    assert len(feeds) == len(plan["plunges"])
+    assert len([f for f in feeds if " Z" in f]) == len(plan["plunges"])
+    assert len([f for f in feeds if " Z" not in f]) == len([p for p in plan["plunges"] if "lead_out" in p])
 
 
 def test_tool_paths_start_where_they_should(cli, tmp_path):
@@ -73,8 +74,9 @@ def test_tool_paths_start_where_they_should(cli, tmp_path):
             same = [p for p in plunges if p["tool_id"] == plunges[i]["tool_id"]]
             end = (plunges[i - 1]["x"], plunges[i - 1]["y"])
             assert plunges[i] == min(same, key=lambda p: math.dist((p["x"], p["y"]), end))
-    travel = sum(math.dist((plunges[i - 1]["x"], plunges[i - 1]["y"]), (plunges[i]["x"], plunges[i]["y"]))
-                 for i in range(1, len(plunges)))
+    # Travel from each lead-out's end (or the plunge) to the next plunge.
+    travel = sum(math.dist(plunges[i - 1].get("lead_out", (plunges[i - 1]["x"], plunges[i - 1]["y"])),
+                           (plunges[i]["x"], plunges[i]["y"])) for i in range(1, len(plunges)))
     assert abs(travel - plan["stats"]["travel_length"]) < 1e-6
 
 

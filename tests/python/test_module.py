@@ -39,7 +39,9 @@ def test_plan_contract(plunge):
     assert set(plan["stats"]) >= {"plunge_count", "per_tool", "region_area", "accessible_area", "covered_area",
                                   "coverage", "travel_length", "planning_seconds"}
     for p in plan["plunges"]:
-        assert set(p) == {"x", "y", "diameter", "tool_id", "z"}
+        assert {"x", "y", "diameter", "tool_id", "z", "approach_z", "retract_z", "engagement", "level", "start",
+                "start_hole"} <= set(p) <= {"x", "y", "diameter", "tool_id", "z", "approach_z", "retract_z",
+                                            "engagement", "level", "start", "start_hole", "lead_out"}
     assert_no_gouge(data, plan)
     assert max(core_left(data, plan, 1.0), default=0.0) < 0.01  # the default wall band
     assert plunge.plan(data)["plunges"] == plan["plunges"]  # deterministic

@@ -20,6 +20,12 @@ struct Tool {
   double feed = 200.0;    // plunge feed, mm/min
   CutterShape shape = CutterShape::Flat;
   double cornerRadius = 0.0;  // bull nose only
+  // A real plunge mill (engagement.hpp, motion.hpp); 0 means no limit.
+  double maxEngagement = 0.0;  // "max_engagement": widest radial band one plunge may cut, mm
+  double minEngagement = 0.0;  // "min_engagement": narrower cuts deflect the tool into the hole beside
+  bool centerCutting = true;   // "center_cutting": false for indexable plunge cutters
+  double coreDiameter = 0.0;   // "core_diameter": the part of a non-centre-cutting tool that does not cut
+  double fluteLength = 0.0;    // "flute_length": deepest cut in one plunge, mm
 };
 
 struct Floor {
@@ -62,6 +68,13 @@ struct PlanInput {
   // allowance: plunges are added where a sculptured floor keeps more (0: none added).
   double maxWallStock = 1.0;
   double maxFloorStock = 1.0;
+  // Motion of a real machine (motion.hpp). "lead_out": horizontal move toward
+  // cleared space before each retract, mm (0: none). "stock_aware_heights":
+  // rapid down to "rapid_clearance" above the stock still there and retract
+  // only as high as the next move needs; false: every move at safe_z.
+  double leadOut = 0.5;
+  bool stockAwareHeights = true;
+  double rapidClearance = 1.0;
 };
 
 struct Plunge {
@@ -69,6 +82,16 @@ struct Plunge {
   double diameter = 0.0;
   int toolId = 0;
   double z = 0.0;
+  // How the machine gets there and away (motion.hpp): rapid down to approachZ,
+  // feed to z, feed to leadOut (if any), rapid up to retractZ and on to the next
+  // plunge at that height.
+  double approachZ = 0.0;
+  double retractZ = 0.0;
+  std::optional<Vec2> leadOut;
+  bool startHole = false;   // a centre-cutting hole for a non-centre-cutting plunger
+  bool start = false;       // into solid (centre-cutting) or a start hole: no engagement limit
+  double engagement = 0.0;  // radial engagement met, mm (engagement.hpp)
+  int level = 0;            // 0 for the first level (flute length, motion.hpp)
 };
 
 struct ToolCount {
@@ -100,6 +123,12 @@ struct PlanStats {
   double volumeRemoved = 0.0;  // mm^3
   double volumeLeft = 0.0;     // mm^3: the pocket down to floor + allowance, minus what is removed
   int restPlunges = 0;         // plunges added by the rest step in Z
+  // Real plunge mills (engagement.hpp, motion.hpp).
+  int startHoles = 0;           // start holes drilled for non-centre-cutting plungers
+  int overEngaged = 0;          // plunges (not starts) cutting wider than their tool's max_engagement
+  int thinCuts = 0;             // plunges cutting narrower than their tool's min_engagement
+  int levels = 1;               // most levels any tool needs for its flute length
+  double minutesAtSafeHeight = 0.0;  // the time model with every move at safe_z
 };
 
 // The floor stock left, sampled on a raster (for the plan's picture).
@@ -122,6 +151,9 @@ struct Plan {
   std::vector<std::string> warnings;
   std::optional<StockMap> stockMap;  // sculptured floors only
 };
+
+// The cutter shape of a tool (depth.hpp).
+Cutter cutterOf(const Tool& tool);
 
 // Checks every number and option of the input; throws plunge::Error naming the problem.
 void validate(PlanInput& input);

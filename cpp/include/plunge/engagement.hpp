@@ -1,0 +1,40 @@
+// Real plunge mills, part 1: the radial engagement limit and non-centre-cutting
+// plungers (Tool::maxEngagement, minEngagement, centerCutting, coreDiameter).
+//
+// A packing of full disks makes every plunge cut its whole diameter. A tool
+// limited to a radial band e instead grows its cut from a start: with C the
+// plan-view region cut so far, a plunge centred in the inward offset of C by
+// r - e meets no material farther than e from C (every point of its disk lies
+// within r of the centre, whose disk of radius r - e is inside C). The planner
+// walks the boundary of that offset ring by ring, keeping the plunges that
+// clear the tool's own targets (its plunges in the packing/covering plan), so
+// positions and order come together. A non-centre-cutting tool's core of
+// radius rc lies over C when r - e >= rc, so it grows the same way with
+// e <= r - rc, from start holes drilled by a centre-cutting tool of the job.
+#pragma once
+#include <vector>
+
+#include "plunge/depth.hpp"
+#include "plunge/heightfield.hpp"
+#include "plunge/plan.hpp"
+#include "plunge/progress.hpp"
+#include "plunge/region.hpp"
+
+namespace plunge {
+
+// The band a tool may cut in one plunge, from its limit and core (infinite when free).
+double engagementLimit(const Tool& tool);
+// The centre-cutting tool that drills start holes for `tool`: the smallest one
+// at least as wide as its core. Throws plunge::Error naming the fix when the
+// job has none.
+const Tool& startHoleTool(const std::vector<Tool>& tools, const Tool& tool);
+
+// The plan's plunges (tools largest first, each tool's in tour order) rebuilt so
+// that every tool keeps its engagement limit and core over removed material.
+// Tools without limits keep their plunges and order. Start holes come first.
+// `stock` starts uncut and is left cut by every returned plunge.
+std::vector<Plunge> growWithinLimits(const PlanInput& in, const Region& region, const DepthSolver& depths,
+                                     const std::vector<Plunge>& ordered, HeightField& stock,
+                                     const Progress& progress = Progress());
+
+}  // namespace plunge

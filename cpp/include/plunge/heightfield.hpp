@@ -1,0 +1,65 @@
+// The stock as the plunges leave it: a height field (top of the material per
+// raster cell) over the pocket's bounds, cut by each plunge's tool shape in
+// execution order. The real-plunge-mill planning (engagement.hpp, motion.hpp)
+// asks it what material a plunge meets: its radial engagement, whether a
+// non-centre-cutting core lies over removed material, how high the stock
+// stands under a rapid.
+#pragma once
+#include <vector>
+
+#include "plunge/depth.hpp"
+#include "plunge/geometry.hpp"
+
+namespace plunge {
+
+// Material thinner than this above a plunge's cutting surface does not count
+// in its radial engagement: the skins left on sculptured floors (rest stock,
+// previous levels' cusps) do not load the flutes radially.
+constexpr double kEngagementSkin = 0.5;  // mm
+
+class HeightField {
+ public:
+  // Cells of `spacing` covering [lo, hi]; the stock starts at topZ everywhere.
+  // Outside [lo, hi] (beyond the walls) the stock is topZ.
+  HeightField(Vec2 lo, Vec2 hi, double spacing, double topZ);
+
+  // Removes what a plunge of `cutter` with its tip at z cuts.
+  void cut(Vec2 c, const Cutter& cutter, double z);
+  // Stock height at the cell containing p.
+  double heightAt(Vec2 p) const;
+  // Highest stock under a disk of radius r at c, and under it swept from a to b.
+  double highest(Vec2 c, double r) const;
+  double highestAlong(Vec2 a, Vec2 b, double r) const;
+
+  struct Contact {
+    double engagement = 0.0;  // widest radial band of material (mm); the diameter into solid
+    double deepest = 0.0;     // thickest material above the cutting surface (mm)
+    int materialCells = 0;    // cells with material thicker than the skin
+    bool coreClear = true;    // every cell within the core radius is cut to z + skin
+  };
+  // What a plunge at c to tip height z would meet: material is stock more than
+  // kEngagementSkin above the cutter's surface. The engagement of a material
+  // cell is its distance to the nearest cell without material inside the disk
+  // (a crescent beside a hole at distance s has engagement s).
+  Contact contact(Vec2 c, const Cutter& cutter, double z, double coreRadius = 0.0) const;
+  // Cells of material a cutter at c with its tip at z meets (beyond the skin).
+  int materialCells(Vec2 c, const Cutter& cutter, double z) const;
+
+  double spacing() const { return h_; }
+  double topZ() const { return top_; }
+
+ private:
+  bool index(Vec2 p, long& i, long& j) const;
+  double at(long i, long j) const;
+  Vec2 centre(long i, long j) const { return {lo_.x + (i + 0.5) * h_, lo_.y + (j + 0.5) * h_}; }
+  Vec2 lo_;
+  double h_, top_;
+  long nx_, ny_;
+  std::vector<float> z_;
+};
+
+// A raster spacing fine enough for the smallest tool and engagement limit,
+// with at most about four million cells.
+double heightFieldSpacing(Vec2 lo, Vec2 hi, double smallestRadius, double smallestLimit);
+
+}  // namespace plunge

@@ -1,0 +1,195 @@
+#include "plunge/motion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+#include "plunge/engagement.hpp"
+
+namespace plunge {
+
+namespace {
+
+const Tool& toolOf(const std::vector<Tool>& tools, int id) {
+  for (const Tool& t : tools)
+    if (t.id == id) return t;
+  return tools.front();
+}
+
+// Runs of consecutive plunges with the same tool and role.
+template <class F>
+void forEachGroup(const std::vector<Plunge>& order, F f) {
+  for (size_t i = 0; i < order.size();) {
+    size_t j = i;
+    while (j < order.size() && order[j].toolId == order[i].toolId && order[j].startHole == order[i].startHole) ++j;
+    f(i, j);
+    i = j;
+  }
+}
+
+// Height of the tool's corner above its tip: the flutes above it cut walls.
+double cornerHeight(const Tool& t) { return cutterProfile(cutterOf(t), 0.5 * t.diameter); }
+
+}  // namespace
+
+HeightField stockOf(const PlanInput& in, const Region& region) {
+  double rMin = 0.5 * in.tools.back().diameter, limit = rMin;
+  for (const Tool& t : in.tools) {
+    rMin = std::min(rMin, 0.5 * t.diameter);
+    if (t.minEngagement > 0) limit = std::min(limit, t.minEngagement);
+    if (t.maxEngagement > 0) limit = std::min(limit, t.maxEngagement);
+  }
+  const double rMax = 0.5 * in.tools.front().diameter;
+  const Vec2 lo = region.minCorner() - Vec2{rMax, rMax}, hi = region.maxCorner() + Vec2{rMax, rMax};
+  return HeightField(lo, hi, heightFieldSpacing(lo, hi, rMin, limit), in.topZ);
+}
+
+std::vector<Plunge> splitIntoLevels(const PlanInput& in, const Region& region, const std::vector<Plunge>& ordered,
+                                    PlanStats& stats) {
+  HeightField stock = stockOf(in, region);
+  std::vector<Plunge> out;
+  stats.levels = 1;
+  forEachGroup(ordered, [&](size_t i, size_t j) {
+    const Tool& t = toolOf(in.tools, ordered[i].toolId);
+    const Cutter cutter = cutterOf(t);
+    std::vector<double> top;
+    int levels = 1;
+    const double step = t.fluteLength - cornerHeight(t);
+    for (size_t k = i; k < j; ++k) {
+      top.push_back(stock.highest({ordered[k].x, ordered[k].y}, cutter.radius));
+      if (t.fluteLength > 0.0)
+        levels = std::max(levels, static_cast<int>(std::ceil((top.back() - ordered[k].z) / step - 1e-9)));
+    }
+    stats.levels = std::max(stats.levels, levels);
+    for (int level = 1; level <= levels; ++level)
+      for (size_t k = i; k < j; ++k) {
+        Plunge p = ordered[k];
+        p.z = level == levels ? p.z : std::max(p.z, top[k - i] - level * step);
+        // Already at its depth on an earlier level.
+        if (level > 1 && std::max(ordered[k].z, top[k - i] - (level - 1) * step) <= ordered[k].z) continue;
+        p.level = level - 1;
+        out.push_back(p);
+        stock.cut({p.x, p.y}, cutter, p.z);
+      }
+  });
+  return out;
+}
+
+namespace {
+
+// The lead-out end of a plunge just made (stock already cut by it), or none.
+std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const DepthSolver& depths,
+                              const HeightField& stock, const Plunge& p, const Cutter& cutter) {
+  const Vec2 c{p.x, p.y};
+  std::optional<Vec2> best;
+  double bestRoom = -1.0;
+  const int samples = std::max(2, static_cast<int>(std::ceil(in.leadOut / (0.25 * cutter.radius))));
+  for (int d = 0; d < 16; ++d) {
+    const double a = 2 * M_PI * d / 16;
+    const Vec2 end = c + Vec2{std::cos(a), std::sin(a)} * in.leadOut;
+    if (stock.materialCells(end, cutter, p.z) > 0) continue;  // into uncut material
+    bool ok = true;
+    for (int s = 1; s <= samples && ok; ++s) {
+      const Vec2 q = c + (end - c) * (static_cast<double>(s) / samples);
+      // No gouge: walls and islands, and the floor under the moving tool.
+      ok = region.diskFits(q, cutter.radius + in.radialAllowance) &&
+           depths.stopHeight(q, cutter) + in.floorAllowance <= p.z + 1e-6;
+    }
+    if (!ok) continue;
+    const double room = region.wallDistance(end, 4 * cutter.radius);
+    if (room > bestRoom + 1e-9) {
+      bestRoom = room;
+      best = end;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+void planMotion(const PlanInput& in, const Region& region, const DepthSolver& depths, Plan& plan) {
+  HeightField stock = stockOf(in, region);
+  std::vector<Plunge>& ps = plan.plunges;
+  const double tol = 1.5 * stock.spacing();
+  int tooDeep = 0, coreOnMaterial = 0;
+  plan.stats.overEngaged = plan.stats.thinCuts = 0;
+  plan.stats.travelLength = 0.0;
+  for (size_t i = 0; i < ps.size(); ++i) {
+    Plunge& p = ps[i];
+    const Tool& t = toolOf(in.tools, p.toolId);
+    const Cutter cutter = cutterOf(t);
+    const Vec2 c{p.x, p.y};
+    const double r = cutter.radius;
+    // What the plunge meets (engagement.hpp's measure).
+    const HeightField::Contact k = stock.contact(c, cutter, p.z, t.centerCutting ? 0.0 : 0.5 * t.coreDiameter);
+    p.engagement = k.engagement;
+    const double top = stock.highest(c, r);
+    if (!p.start && t.maxEngagement > 0 && k.engagement > t.maxEngagement + tol) ++plan.stats.overEngaged;
+    if (!p.start && t.minEngagement > 0 && k.materialCells > 0 && k.engagement < t.minEngagement - tol)
+      ++plan.stats.thinCuts;
+    if (!t.centerCutting && !k.coreClear) ++coreOnMaterial;
+    if (t.fluteLength > 0 && top - p.z > t.fluteLength + 1e-6) ++tooDeep;
+    p.approachZ = in.stockAwareHeights ? std::min(in.safeZ, std::max(top, p.z) + in.rapidClearance) : in.safeZ;
+    // The retract of the plunge before: as high as the stock along the move.
+    if (i > 0) {
+      Plunge& q = ps[i - 1];
+      const Vec2 from = q.leadOut ? *q.leadOut : Vec2{q.x, q.y};
+      plan.stats.travelLength += dist(from, c);
+      q.retractZ = in.safeZ;
+      if (in.stockAwareHeights && q.toolId == p.toolId)
+        q.retractZ = std::min(in.safeZ, std::max({stock.highestAlong(from, c, 0.5 * q.diameter) + in.rapidClearance,
+                                                  p.approachZ, q.z + in.rapidClearance}));
+    }
+    stock.cut(c, cutter, p.z);
+    p.leadOut.reset();
+    if (in.leadOut > 0.0) p.leadOut = leadOutOf(in, region, depths, stock, p, cutter);
+    p.retractZ = in.safeZ;
+  }
+  std::ostringstream w;
+  w << std::fixed << std::setprecision(2);
+  if (plan.stats.overEngaged > 0) {
+    w << plan.stats.overEngaged << " plunges cut a wider band than their tool's max engagement (on sculptured "
+      << "floors, where uneven depths leave thick steps)";
+    plan.warnings.push_back(w.str());
+    w.str("");
+  }
+  if (plan.stats.thinCuts > 0) {
+    w << plan.stats.thinCuts << " plunges cut a narrower band than their tool's min engagement (the last slivers "
+      << "of their region, where the walls leave no wider cut): the tool may deflect there";
+    plan.warnings.push_back(w.str());
+    w.str("");
+  }
+  if (coreOnMaterial > 0)
+    plan.warnings.push_back(std::to_string(coreOnMaterial) +
+                            " plunges of a non-centre-cutting tool have material under the core (uneven floor depths)");
+  if (tooDeep > 0)
+    plan.warnings.push_back(std::to_string(tooDeep) + " plunges cut deeper than their tool's flute length");
+  plan.stats.estimatedMinutes = motionMinutes(plan, in.tools, in, false);
+  plan.stats.minutesAtSafeHeight = motionMinutes(plan, in.tools, in, true);
+}
+
+double motionMinutes(const Plan& plan, const std::vector<Tool>& tools, const PlanInput& in, bool atSafeHeight) {
+  const TimeModel& m = in.timeModel;
+  double minutes = 0.0, z = in.safeZ;
+  int changes = 0;
+  for (size_t i = 0; i < plan.plunges.size(); ++i) {
+    const Plunge& p = plan.plunges[i];
+    const double feed = toolOf(tools, p.toolId).feed;
+    if (i == 0 || plan.plunges[i - 1].toolId != p.toolId) ++changes;
+    if (i > 0) {
+      const Plunge& q = plan.plunges[i - 1];
+      minutes += dist(q.leadOut ? *q.leadOut : Vec2{q.x, q.y}, {p.x, p.y}) / m.rapidRate;
+    }
+    const double approach = atSafeHeight ? in.safeZ : p.approachZ;
+    const double retract = atSafeHeight ? in.safeZ : p.retractZ;
+    minutes += std::max(0.0, z - approach) / m.retractRate + (approach - p.z) / feed;
+    if (p.leadOut) minutes += dist(*p.leadOut, {p.x, p.y}) / feed;
+    minutes += (retract - p.z) / m.retractRate;
+    z = retract;
+  }
+  return minutes + changes * m.toolChangeSeconds / 60.0;
+}
+
+}  // namespace plunge
