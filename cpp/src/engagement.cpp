@@ -279,7 +279,10 @@ class Grower {
     tried[best] = true;
     const Plunge& s = planned[best];
     const Vec2 c{s.x, s.y};
-    if (!tool.centerCutting) {
+    // Slivers the rings missed: a planned plunge that keeps the limits needs no start.
+    const HeightField::Contact k = stock_.contact(c, cutter, s.z, tool.centerCutting ? 0.0 : 0.5 * tool.coreDiameter);
+    const bool fits = k.coreClear && k.engagement <= std::min(engagementLimit(tool), 2 * cutter.radius);
+    if (!tool.centerCutting && !fits) {
       const Tool& drill = startHoleTool(in_.tools, tool);
       const std::optional<double> z = stopAt(c, drill);
       // No hole possible here (a drill wider than the plunger may not fit): another start.
@@ -289,7 +292,7 @@ class Grower {
       holes_.push_back(hole);
       stock_.cut(c, cutterOf(drill), hole.z);
     }
-    place(tool, cutter, c, s.z, targets, true);
+    place(tool, cutter, c, s.z, targets, !fits);
     at = c;
     return true;
   }

@@ -53,9 +53,9 @@ double HeightField::highestAlong(Vec2 a, Vec2 b, double r) const {
   return best;
 }
 
-int HeightField::materialCells(Vec2 c, const Cutter& cutter, double z) const {
+int HeightField::materialCells(Vec2 c, const Cutter& cutter, double z, double margin) const {
   int n = 0;
-  const double r = cutter.radius;
+  const double r = cutter.radius + margin;
   const long i0 = static_cast<long>(std::floor((c.x - r - lo_.x) / h_));
   const long j0 = static_cast<long>(std::floor((c.y - r - lo_.y) / h_));
   const long m = static_cast<long>(std::ceil(2 * r / h_)) + 1;

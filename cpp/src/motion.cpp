@@ -6,7 +6,9 @@
 #include <map>
 #include <sstream>
 
+#include "plunge/covering.hpp"
 #include "plunge/engagement.hpp"
+#include "plunge/polygon.hpp"
 
 namespace plunge {
 
@@ -89,7 +91,9 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
   for (int d = 0; d < 16; ++d) {
     const double a = 2 * M_PI * d / 16;
     const Vec2 end = c + Vec2{std::cos(a), std::sin(a)} * in.leadOut;
-    if (stock.materialCells(end, cutter, p.z) > 0) continue;  // into uncut material
+    // Into uncut material (cells touching the moved disk: the crescent it adds is
+    // narrower than a cell).
+    if (stock.materialCells(end, cutter, p.z, 0.71 * stock.spacing()) > 0) continue;
     bool ok = true;
     for (int s = 1; s <= samples && ok; ++s) {
       const Vec2 q = c + (end - c) * (static_cast<double>(s) / samples);
@@ -107,11 +111,61 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
   return best;
 }
 
+// The plan view of what the plunges so far have touched. Anything a rapid's
+// swept disk covers outside it is solid to top_z (stock or wall), however thin
+// (a pin between three disks, the radial allowance): exact where the raster
+// could miss features narrower than a cell. Pieces under 1e-4 mm^2, left by
+// the disks' polygons (0.002 mm chords) and a 0.01 mm margin, do not count.
+class Touched {
+ public:
+  explicit Touched(double bucket) : bucket_(bucket) {}
+  void add(Vec2 c, double r) {
+    disks_.push_back({c, r});
+    grid_[key(static_cast<long>(std::floor(c.x / bucket_)), static_cast<long>(std::floor(c.y / bucket_)))]
+        .push_back(disks_.size() - 1);
+  }
+  // Does a disk of radius r swept from a to b pass over untouched material?
+  bool untouched(Vec2 a, Vec2 b, double r) const {
+    r -= 0.01;
+    Polygons swept{poly::disk({a, r})};
+    if (dist(a, b) > 1e-9) {
+      const Vec2 n = leftNormal((b - a) * (1.0 / dist(a, b))) * r;
+      swept = poly::unite({poly::disk({a, r}), poly::disk({b, r}), Loop{a - n, b - n, b + n, a + n}});
+    }
+    const Vec2 lo{std::min(a.x, b.x) - r, std::min(a.y, b.y) - r}, hi{std::max(a.x, b.x) + r, std::max(a.y, b.y) + r};
+    std::vector<Circle> near;
+    for (long j = static_cast<long>(std::floor(lo.y / bucket_)) - 1; j <= static_cast<long>(std::floor(hi.y / bucket_)) + 1; ++j)
+      for (long i = static_cast<long>(std::floor(lo.x / bucket_)) - 1; i <= static_cast<long>(std::floor(hi.x / bucket_)) + 1;
+           ++i) {
+        auto it = grid_.find(key(i, j));
+        if (it == grid_.end()) continue;
+        for (size_t k : it->second) {
+          const Circle& d = disks_[k];
+          if (d.c.x + d.r >= lo.x && d.c.x - d.r <= hi.x && d.c.y + d.r >= lo.y && d.c.y - d.r <= hi.y) near.push_back(d);
+        }
+      }
+    if (near.empty()) return true;
+    return poly::area(poly::subtract(swept, poly::unionOfDisks(near))) > 1e-4;
+  }
+
+ private:
+  static long long key(long i, long j) { return (static_cast<long long>(i) << 32) ^ (j & 0xffffffffLL); }
+  double bucket_;
+  std::vector<Circle> disks_;
+  std::map<long long, std::vector<size_t>> grid_;
+};
+
 }  // namespace
 
 void planMotion(const PlanInput& in, const Region& region, const DepthSolver& depths, Plan& plan) {
   HeightField stock = stockOf(in, region);
   std::vector<Plunge>& ps = plan.plunges;
+  Touched touched(in.tools.front().diameter);
+  // The highest stock a rapid sweeping the disk from a to b passes over.
+  auto highestAlong = [&](Vec2 a, Vec2 b, double r) {
+    const double h = stock.highestAlong(a, b, r);
+    return h >= in.topZ || touched.untouched(a, b, r) ? std::max(h, in.topZ) : h;
+  };
   const double tol = 1.5 * stock.spacing();
   int tooDeep = 0, coreOnMaterial = 0;
   plan.stats.overEngaged = plan.stats.thinCuts = 0;
@@ -125,12 +179,12 @@ void planMotion(const PlanInput& in, const Region& region, const DepthSolver& de
     // What the plunge meets (engagement.hpp's measure).
     const HeightField::Contact k = stock.contact(c, cutter, p.z, t.centerCutting ? 0.0 : 0.5 * t.coreDiameter);
     p.engagement = k.engagement;
-    const double top = stock.highest(c, r);
+    const double top = highestAlong(c, c, r);
     if (!p.start && t.maxEngagement > 0 && k.engagement > t.maxEngagement + tol) ++plan.stats.overEngaged;
     if (!p.start && t.minEngagement > 0 && k.materialCells > 0 && k.engagement < t.minEngagement - tol)
       ++plan.stats.thinCuts;
     if (!t.centerCutting && !k.coreClear) ++coreOnMaterial;
-    if (t.fluteLength > 0 && top - p.z > t.fluteLength + 1e-6) ++tooDeep;
+    if (t.fluteLength > 0 && k.deepest + cornerHeight(t) > t.fluteLength + 1e-6) ++tooDeep;
     p.approachZ = in.stockAwareHeights ? std::min(in.safeZ, std::max(top, p.z) + in.rapidClearance) : in.safeZ;
     // The retract of the plunge before: as high as the stock along the move.
     if (i > 0) {
@@ -139,10 +193,11 @@ void planMotion(const PlanInput& in, const Region& region, const DepthSolver& de
       plan.stats.travelLength += dist(from, c);
       q.retractZ = in.safeZ;
       if (in.stockAwareHeights && q.toolId == p.toolId)
-        q.retractZ = std::min(in.safeZ, std::max({stock.highestAlong(from, c, 0.5 * q.diameter) + in.rapidClearance,
+        q.retractZ = std::min(in.safeZ, std::max({highestAlong(from, c, 0.5 * q.diameter) + in.rapidClearance,
                                                   p.approachZ, q.z + in.rapidClearance}));
     }
     stock.cut(c, cutter, p.z);
+    touched.add(c, r);
     p.leadOut.reset();
     if (in.leadOut > 0.0) p.leadOut = leadOutOf(in, region, depths, stock, p, cutter);
     p.retractZ = in.safeZ;

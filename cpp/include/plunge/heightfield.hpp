@@ -42,8 +42,9 @@ class HeightField {
   // cell is its distance to the nearest cell without material inside the disk
   // (a crescent beside a hole at distance s has engagement s).
   Contact contact(Vec2 c, const Cutter& cutter, double z, double coreRadius = 0.0) const;
-  // Cells of material a cutter at c with its tip at z meets (beyond the skin).
-  int materialCells(Vec2 c, const Cutter& cutter, double z) const;
+  // Cells of material a cutter at c with its tip at z meets (beyond the skin),
+  // counting cells whose centre lies up to `margin` beyond its radius.
+  int materialCells(Vec2 c, const Cutter& cutter, double z, double margin = 0.0) const;
 
   double spacing() const { return h_; }
   double topZ() const { return top_; }
