@@ -40,22 +40,27 @@ namespace {
 // inside its planned disks, each with the height the planned plunges cut it to.
 class Targets {
  public:
-  Targets(const std::vector<Plunge>& planned, const Cutter& cutter, double spacing) : bucket_(cutter.radius) {
-    std::map<std::pair<long, long>, size_t> cell;
+  // The points are the stock's cell centres: a plunge covers a point exactly
+  // when it cuts the point's cell.
+  Targets(const std::vector<Plunge>& planned, const Cutter& cutter, const HeightField& stock)
+      : bucket_(cutter.radius) {
+    std::map<std::pair<long long, long long>, size_t> cell;
+    const double h = stock.spacing();
+    const Vec2 origin = stock.cellCentre({0.0, 0.0});
     for (const Plunge& p : planned) {
       const Vec2 c{p.x, p.y};
-      const long i0 = std::lround(std::floor((c.x - cutter.radius) / spacing));
-      const long j0 = std::lround(std::floor((c.y - cutter.radius) / spacing));
-      const long n = std::lround(std::ceil(2 * cutter.radius / spacing)) + 1;
-      for (long j = j0; j <= j0 + n; ++j)
-        for (long i = i0; i <= i0 + n; ++i) {
-          const Vec2 q{(i + 0.5) * spacing, (j + 0.5) * spacing};
+      const long n = std::lround(std::ceil(2 * cutter.radius / h)) + 1;
+      const Vec2 first = stock.cellCentre(c - Vec2{cutter.radius, cutter.radius});
+      for (long j = 0; j <= n; ++j)
+        for (long i = 0; i <= n; ++i) {
+          const Vec2 q = first + Vec2{i * h, j * h};
           const double rho = dist(q, c);
-          if (rho > cutter.radius - 0.5 * spacing) continue;
+          if (rho > cutter.radius) continue;
           const double z = p.z + cutterProfile(cutter, rho);
-          auto [it, fresh] = cell.try_emplace({i, j}, points_.size());
+          auto [it, fresh] = cell.try_emplace({std::llround((q.x - origin.x) / h), std::llround((q.y - origin.y) / h)},
+                                              points_.size());
           if (fresh) {
-            points_.push_back({q, z, false});
+            points_.push_back({q, z, false, false});
           } else {
             points_[it->second].z = std::min(points_[it->second].z, z);
           }
@@ -67,14 +72,14 @@ class Targets {
 
   // Target points a plunge at c (tip at z) would still cut, beyond the skin.
   template <class F>
-  void forEachOpen(Vec2 c, double r, F f) const {
+  void forEachOpen(Vec2 c, double r, F f, bool withDeferred = true) const {
     const long bi = static_cast<long>(std::floor(c.x / bucket_)), bj = static_cast<long>(std::floor(c.y / bucket_));
     for (long j = bj - 1; j <= bj + 1; ++j)
       for (long i = bi - 1; i <= bi + 1; ++i) {
         auto it = grid_.find(pack(i, j));
         if (it == grid_.end()) continue;
         for (size_t k : it->second)
-          if (!points_[k].done && dist(points_[k].p, c) <= r) f(k);
+          if (!points_[k].done && (withDeferred || !points_[k].deferred) && dist(points_[k].p, c) <= r) f(k);
       }
   }
   int gain(Vec2 c, const Cutter& cutter, double z, const HeightField& stock) const {
@@ -83,6 +88,22 @@ class Targets {
       if (z + cutterProfile(cutter, dist(points_[k].p, c)) < stock.heightAt(points_[k].p) - kEngagementSkin) ++n;
     });
     return n;
+  }
+  // Target points still to cut under a disk (whatever the plunge's depth),
+  // not counting those the rings gave up on.
+  int open(Vec2 c, double r) const {
+    int n = 0;
+    forEachOpen(c, r, [&](size_t) { ++n; }, false);
+    return n;
+  }
+  // Over a sculptured floor a ring plunge may stop above a point its target
+  // plunge reached: the rings leave such points to the starts at the planned
+  // positions (startAt), instead of trying them again on every ring.
+  void defer(Vec2 c, const Cutter& cutter, double z, const HeightField& stock) {
+    forEachOpen(c, cutter.radius, [&](size_t k) {
+      if (z + cutterProfile(cutter, dist(points_[k].p, c)) >= stock.heightAt(points_[k].p) - kEngagementSkin)
+        points_[k].deferred = true;
+    }, false);
   }
   // Marks the points cut (to their target height, within the skin) as done.
   void update(Vec2 c, double r, const HeightField& stock) {
@@ -101,6 +122,7 @@ class Targets {
     Vec2 p;
     double z;
     bool done;
+    bool deferred = false;
   };
   static long long pack(long i, long j) { return (static_cast<long long>(i) << 32) ^ (j & 0xffffffffLL); }
   long long key(Vec2 p) const {
@@ -209,7 +231,7 @@ class Grower {
     const double r = cutter.radius, e = std::min(engagementLimit(tool), 2 * r);
     const double coreR = tool.centerCutting ? 0.0 : 0.5 * tool.coreDiameter;
     const double h = stock_.spacing();
-    Targets targets(planned, cutter, h);
+    Targets targets(planned, cutter, stock_);
     for (const Plunge& p : planned) targets.update({p.x, p.y}, r, stock_);
     const Polygons centres = poly::offset(allowedRegion(region_, in_.radialAllowance), -(r + 1e-3));
     // Along a ring, plunges a chord of the band apart: the next ring's offset
@@ -221,15 +243,22 @@ class Grower {
     std::vector<bool> triedStart(planned.size(), false);
     Vec2 at = order_.empty() ? (in_.start ? *in_.start : region_.loops()[0].front())
                              : Vec2{order_.back().x, order_.back().y};
-    while (targets.left() > 0) {
+    int stalls = 0;  // rounds that cut no target point (a guard: each round should)
+    while (targets.left() > 0 && stalls < 3) {
       progress_.tick();
+      const size_t before = targets.left();
       const Polygons ring = poly::intersect(poly::offset(cleared_, -depthIn, 0.01), centres);
       int accepted = 0;
       std::vector<std::pair<Vec2, double>> thin;
       for (const Vec2 c : walk(ring, at, step)) {
-        if (!region_.diskFits(c, r + in_.radialAllowance)) continue;
+        // Cheap tests first: a stop height costs an optimization on sculptured floors.
+        if (targets.open(c, r) < minGain || !region_.diskFits(c, r + in_.radialAllowance)) continue;
         const std::optional<double> z = stopAt(c, tool);
-        if (!z || targets.gain(c, cutter, *z, stock_) < minGain) continue;
+        if (!z) continue;
+        if (targets.gain(c, cutter, *z, stock_) < minGain) {
+          targets.defer(c, cutter, *z, stock_);
+          continue;
+        }
         const HeightField::Contact k = stock_.contact(c, cutter, *z, coreR);
         if (!k.coreClear || k.engagement > e + 2 * h) continue;
         if (k.engagement < tool.minEngagement) {
@@ -248,8 +277,10 @@ class Grower {
             at = c;
             ++accepted;
           }
+      if (accepted == 0) accepted = finishPlanned(tool, cutter, planned, targets, at);
       if (accepted == 0 && !startAt(tool, cutter, planned, triedStart, targets, at)) break;
       settle();
+      stalls = targets.left() < before ? 0 : stalls + 1;
     }
   }
 
@@ -260,6 +291,27 @@ class Grower {
     stock_.cut(c, cutter, z);
     newDisks_.push_back({c, cutter.radius});
     targets.update(c, cutter.radius, stock_);
+    targets.defer(c, cutter, z, stock_);  // what it left above its target, for the starts
+  }
+
+  // Material the rings cannot reach (slivers between their plunges, targets
+  // deeper than ring plunges stop over a sculptured floor): every planned
+  // plunge still cutting some that keeps the limits is made as planned.
+  int finishPlanned(const Tool& tool, const Cutter& cutter, const std::vector<Plunge>& planned, Targets& targets,
+                    Vec2& at) {
+    const double coreR = tool.centerCutting ? 0.0 : 0.5 * tool.coreDiameter;
+    const double e = std::min(engagementLimit(tool), 2 * cutter.radius);
+    int placed = 0;
+    for (const Plunge& s : planned) {
+      const Vec2 c{s.x, s.y};
+      if (targets.gain(c, cutter, s.z, stock_) < 1) continue;
+      const HeightField::Contact k = stock_.contact(c, cutter, s.z, coreR);
+      if (!k.coreClear || k.engagement > e) continue;
+      place(tool, cutter, c, s.z, targets, false);
+      at = c;
+      ++placed;
+    }
+    return placed;
   }
 
   // A start where the most target material is left, among the planned
@@ -279,10 +331,7 @@ class Grower {
     tried[best] = true;
     const Plunge& s = planned[best];
     const Vec2 c{s.x, s.y};
-    // Slivers the rings missed: a planned plunge that keeps the limits needs no start.
-    const HeightField::Contact k = stock_.contact(c, cutter, s.z, tool.centerCutting ? 0.0 : 0.5 * tool.coreDiameter);
-    const bool fits = k.coreClear && k.engagement <= std::min(engagementLimit(tool), 2 * cutter.radius);
-    if (!tool.centerCutting && !fits) {
+    if (!tool.centerCutting) {
       const Tool& drill = startHoleTool(in_.tools, tool);
       const std::optional<double> z = stopAt(c, drill);
       // No hole possible here (a drill wider than the plunger may not fit): another start.
@@ -292,7 +341,7 @@ class Grower {
       holes_.push_back(hole);
       stock_.cut(c, cutterOf(drill), hole.z);
     }
-    place(tool, cutter, c, s.z, targets, !fits);
+    place(tool, cutter, c, s.z, targets, true);
     at = c;
     return true;
   }

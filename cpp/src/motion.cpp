@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -111,47 +112,58 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
   return best;
 }
 
-// The plan view of what the plunges so far have touched. Anything a rapid's
-// swept disk covers outside it is solid to top_z (stock or wall), however thin
-// (a pin between three disks, the radial allowance): exact where the raster
-// could miss features narrower than a cell. Pieces under 1e-4 mm^2, left by
-// the disks' polygons (0.002 mm chords) and a 0.01 mm margin, do not count.
+// The plunges made so far, for the heights of rapids. Stock at a point is the
+// lowest cut surface of the disks covering it, or top_z (stock or wall) where
+// none does, so the highest stock under a rapid's swept disk is at most the
+// highest bottom (tip + corner height) of the disks it meets, unless it meets
+// untouched material. Exact where a raster could miss a feature narrower than
+// a cell (a pin between three disks, the radial allowance). Pieces under
+// 1e-4 mm^2, left by the disks' polygons (0.002 mm chords) and a 0.01 mm
+// margin, do not count.
 class Touched {
  public:
-  explicit Touched(double bucket) : bucket_(bucket) {}
-  void add(Vec2 c, double r) {
-    disks_.push_back({c, r});
-    grid_[key(static_cast<long>(std::floor(c.x / bucket_)), static_cast<long>(std::floor(c.y / bucket_)))]
-        .push_back(disks_.size() - 1);
+  Touched(double bucket, double top) : bucket_(bucket), top_(top) {}
+  void add(Vec2 c, double r, double bottom) {
+    disks_.push_back({{c, r}, bottom});
+    grid_[key(cellOf(c.x), cellOf(c.y))].push_back(disks_.size() - 1);
   }
-  // Does a disk of radius r swept from a to b pass over untouched material?
-  bool untouched(Vec2 a, Vec2 b, double r) const {
-    r -= 0.01;
-    Polygons swept{poly::disk({a, r})};
-    if (dist(a, b) > 1e-9) {
-      const Vec2 n = leftNormal((b - a) * (1.0 / dist(a, b))) * r;
-      swept = poly::unite({poly::disk({a, r}), poly::disk({b, r}), Loop{a - n, b - n, b + n, a + n}});
-    }
+  // The highest stock a disk of radius r swept from a to b passes over (an upper bound).
+  double highestAlong(Vec2 a, Vec2 b, double r) const {
+    const Segment path{a, b};
     const Vec2 lo{std::min(a.x, b.x) - r, std::min(a.y, b.y) - r}, hi{std::max(a.x, b.x) + r, std::max(a.y, b.y) + r};
     std::vector<Circle> near;
-    for (long j = static_cast<long>(std::floor(lo.y / bucket_)) - 1; j <= static_cast<long>(std::floor(hi.y / bucket_)) + 1; ++j)
-      for (long i = static_cast<long>(std::floor(lo.x / bucket_)) - 1; i <= static_cast<long>(std::floor(hi.x / bucket_)) + 1;
-           ++i) {
+    double highest = -std::numeric_limits<double>::infinity();
+    for (long j = cellOf(lo.y) - 1; j <= cellOf(hi.y) + 1; ++j)
+      for (long i = cellOf(lo.x) - 1; i <= cellOf(hi.x) + 1; ++i) {
         auto it = grid_.find(key(i, j));
         if (it == grid_.end()) continue;
         for (size_t k : it->second) {
-          const Circle& d = disks_[k];
-          if (d.c.x + d.r >= lo.x && d.c.x - d.r <= hi.x && d.c.y + d.r >= lo.y && d.c.y - d.r <= hi.y) near.push_back(d);
+          const Disk& d = disks_[k];
+          if (distanceToSegment(path, d.circle.c) >= d.circle.r + r) continue;
+          near.push_back(d.circle);
+          highest = std::max(highest, d.bottom);
         }
       }
-    if (near.empty()) return true;
-    return poly::area(poly::subtract(swept, poly::unionOfDisks(near))) > 1e-4;
+    if (near.empty()) return top_;
+    const double rs = r - 0.01;
+    Polygons swept{poly::disk({a, rs})};
+    if (dist(a, b) > 1e-9) {
+      const Vec2 n = leftNormal((b - a) * (1.0 / dist(a, b))) * rs;
+      swept = poly::unite({poly::disk({a, rs}), poly::disk({b, rs}), Loop{a - n, b - n, b + n, a + n}});
+    }
+    if (poly::area(poly::subtract(swept, poly::unionOfDisks(near))) > 1e-4) return top_;
+    return std::min(top_, highest);
   }
 
  private:
+  struct Disk {
+    Circle circle;
+    double bottom;
+  };
+  long cellOf(double v) const { return static_cast<long>(std::floor(v / bucket_)); }
   static long long key(long i, long j) { return (static_cast<long long>(i) << 32) ^ (j & 0xffffffffLL); }
-  double bucket_;
-  std::vector<Circle> disks_;
+  double bucket_, top_;
+  std::vector<Disk> disks_;
   std::map<long long, std::vector<size_t>> grid_;
 };
 
@@ -160,12 +172,8 @@ class Touched {
 void planMotion(const PlanInput& in, const Region& region, const DepthSolver& depths, Plan& plan) {
   HeightField stock = stockOf(in, region);
   std::vector<Plunge>& ps = plan.plunges;
-  Touched touched(in.tools.front().diameter);
-  // The highest stock a rapid sweeping the disk from a to b passes over.
-  auto highestAlong = [&](Vec2 a, Vec2 b, double r) {
-    const double h = stock.highestAlong(a, b, r);
-    return h >= in.topZ || touched.untouched(a, b, r) ? std::max(h, in.topZ) : h;
-  };
+  Touched touched(in.tools.front().diameter, in.topZ);
+  auto highestAlong = [&](Vec2 a, Vec2 b, double r) { return touched.highestAlong(a, b, r); };
   const double tol = 1.5 * stock.spacing();
   int tooDeep = 0, coreOnMaterial = 0;
   plan.stats.overEngaged = plan.stats.thinCuts = 0;
@@ -197,9 +205,10 @@ void planMotion(const PlanInput& in, const Region& region, const DepthSolver& de
                                                   p.approachZ, q.z + in.rapidClearance}));
     }
     stock.cut(c, cutter, p.z);
-    touched.add(c, r);
+    touched.add(c, r, p.z + cornerHeight(t));
     p.leadOut.reset();
     if (in.leadOut > 0.0) p.leadOut = leadOutOf(in, region, depths, stock, p, cutter);
+    if (p.leadOut) touched.add(*p.leadOut, r, p.z + cornerHeight(t));
     p.retractZ = in.safeZ;
   }
   std::ostringstream w;

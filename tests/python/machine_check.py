@@ -110,11 +110,12 @@ class Check:
         return (slice(j0, j1 + 1), slice(i0, i1 + 1)), np.meshgrid(xs, ys)
 
     def swept_max(self, a, b, r):
-        """Highest stock under a disk of radius r swept from a to b (cells touching it)."""
+        """Highest stock under a disk of radius r swept from a to b (cells whose centre it covers,
+        as the cuts: the stock of a cell is the stock at its centre)."""
         (sy, sx), (X, Y) = self.window((a[0] + b[0]) / 2, (a[1] + b[1]) / 2,
                                        math.dist(a, b) / 2 + r + self.h)
         d = self._segment_distance(X, Y, a, b)
-        under = d <= r + 0.71 * self.h
+        under = d <= r
         return float(self.z[sy, sx][under].max()) if under.any() else -math.inf
 
     @staticmethod

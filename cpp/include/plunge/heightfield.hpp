@@ -5,6 +5,7 @@
 // non-centre-cutting core lies over removed material, how high the stock
 // stands under a rapid.
 #pragma once
+#include <cmath>
 #include <vector>
 
 #include "plunge/depth.hpp"
@@ -46,6 +47,10 @@ class HeightField {
   // counting cells whose centre lies up to `margin` beyond its radius.
   int materialCells(Vec2 c, const Cutter& cutter, double z, double margin = 0.0) const;
 
+  // Centre of the cell containing p (the point whose stock the cell holds).
+  Vec2 cellCentre(Vec2 p) const {
+    return centre(static_cast<long>(std::floor((p.x - lo_.x) / h_)), static_cast<long>(std::floor((p.y - lo_.y) / h_)));
+  }
   double spacing() const { return h_; }
   double topZ() const { return top_; }
 
