@@ -27,7 +27,8 @@ translate = FreeCAD.Qt.translate
 
 # Properties the job's setup sheet can carry defaults for.
 SETUP_PROPERTIES = ["RadialAllowance", "FloorAllowance", "ChordTolerance", "UseCannedCycle", "PeckDepth",
-                    "MinCoverage", "AutoSelectTools", "Strategy", "MaxWallStock", "MaxFloorStock"]
+                    "MinCoverage", "AutoSelectTools", "Strategy", "MaxWallStock", "MaxFloorStock", "LeadOut",
+                    "StockAwareHeights", "MaxEngagement", "MinEngagement"]
 
 # Strategy property values -> the planner's "strategy" and "grid" input.
 STRATEGIES = {
@@ -133,6 +134,18 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         _add(obj, "App::PropertyLength", "MaxFloorStock",
              "Highest stock a sculptured floor may keep above floor + allowance: more plunges where it would "
              "(0: none added)", 1.0)
+        _add(obj, "App::PropertyLength", "LeadOut",
+             "After reaching depth, feed this far sideways toward cleared space before retracting (explicit moves "
+             "only; 0: straight up)", 0.5)
+        _add(obj, "App::PropertyBool", "StockAwareHeights",
+             "Rapid down to 1 mm above the stock still under each plunge and retract only as high as the next move "
+             "needs (explicit moves only); off: every rapid at the safe height", True)
+        _add(obj, "App::PropertyFloat", "MaxEngagement",
+             "Widest radial band one plunge may cut, % of each plunger's diameter (100: unlimited); a bit's own "
+             "MaxEngagement property wins", 100.0)
+        _add(obj, "App::PropertyFloat", "MinEngagement",
+             "Narrowest band a plunge should cut, % of the diameter (0: no limit); a bit's own MinEngagement "
+             "property wins", 0.0)
         _add(obj, "App::PropertyFloat", "MinCoverage",
              "With Max Wall Stock 0: percentage of the reachable floor the plunges must clear", 99.6)
         _add(obj, "App::PropertyBool", "AutoSelectTools",
@@ -153,7 +166,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         # have labels with parentheses (nested comments in G-code).
         self._addProperties(obj)
         for comp in companions(obj):
-            label = companion_label(obj, comp.ToolController)
+            label = companion_label(obj, comp.ToolController, bool(getattr(comp, "StartHoles", False)))
             if comp.ToolController is not None and comp.Label != label:
                 comp.Label = label
 
@@ -230,7 +243,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
                 "version": 1,
                 "boundary": boundary,
                 "islands": islands,
-                "tools": [geometry.tool_spec(tc) for tc in tcs],
+                "tools": [geometry.tool_spec(tc, obj.MaxEngagement, obj.MinEngagement) for tc in tcs],
                 # Rapids and retracts at the first plunger's rapid rates, as the post runs them.
                 "time_model": time_model(tcs[0]),
                 "top_z": obj.StartDepth.Value,
@@ -243,7 +256,16 @@ class ObjectPlungeRough(PathOp.ObjectOp):
                 "min_coverage": obj.MinCoverage / 100.0,
                 "max_wall_stock": obj.MaxWallStock.Value,
                 "max_floor_stock": obj.MaxFloorStock.Value,
+                # Lead-out and stock-aware heights are explicit moves: a canned cycle has neither.
+                "lead_out": 0.0 if obj.UseCannedCycle else obj.LeadOut.Value,
+                "stock_aware_heights": bool(obj.StockAwareHeights and not obj.UseCannedCycle),
             }
+            depth = obj.StartDepth.Value - obj.FinalDepth.Value
+            for tc in tcs:
+                length = geometry.bit_length(tc.Tool, "Length")
+                if length and length < depth:
+                    raise ValueError("%s is %g mm long, shorter than the pocket is deep (%g mm): use a longer tool"
+                                     % (tc.Label, length, depth))
             if obj.SafeHeight.Value > obj.ClearanceHeight.Value:
                 raise ValueError("the safe height is above the clearance height")
             if obj.StartDepth.Value <= obj.FinalDepth.Value:
@@ -263,9 +285,11 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         except _ABORT:  # FreeCAD's progress indicator: the user aborted (Esc)
             _report(obj, translate("PlungeRough", "planning cancelled"))
             return
-        # FinalDepth is the deepest any plunge goes.
+        # FinalDepth is the deepest any plunge goes (the approach and retract stay above it).
         for p in plan["plunges"]:
             p["z"] = max(p["z"], obj.FinalDepth.Value + obj.FloorAllowance.Value)
+            p["approach_z"] = max(p["approach_z"], p["z"])
+            p["retract_z"] = max(p["retract_z"], p["z"])
         picture = plan.pop("svg")
         obj.PlanData = json.dumps({"input": data, "plan": plan})
         with open(os.path.join(workdir, "plan.svg"), "w") as f:
@@ -287,9 +311,20 @@ class ObjectPlungeRough(PathOp.ObjectOp):
             own_tc = next((tc for tc in tcs if int(tc.ToolNumber) in used), tcs[0])
             if obj.ToolController != own_tc:
                 obj.ToolController = own_tc
+        # Start holes: every one is drilled by its companion, placed before this operation.
+        drilling = {p["tool_id"] for p in plan["plunges"] if p.get("start_hole")}
+        holes_by = {int(c.ToolController.ToolNumber) for c in companions(obj) if getattr(c, "StartHoles", False)}
+        if drilling - holes_by:
+            _report(obj, translate("PlungeRough", "the plan drills start holes with T%s, which has no start hole "
+                                   "operation: tick the plungers again") % ", T".join(str(t) for t in drilling - holes_by))
+            obj.PlanData = ""
+            return
         for comp in companions(obj):
-            active = not obj.AutoSelectTools or (int(comp.ToolController.ToolNumber) in used
-                                                 and comp.ToolController != own_tc)
+            if getattr(comp, "StartHoles", False):
+                active = int(comp.ToolController.ToolNumber) in drilling
+            else:
+                active = not obj.AutoSelectTools or (int(comp.ToolController.ToolNumber) in used
+                                                     and comp.ToolController != own_tc)
             if comp.Active != active:
                 comp.Active = active
         self.commandlist.extend(toolCommands(obj, plunges_of_tool(plan, own_tc)))
@@ -349,10 +384,11 @@ def planner():
     return plunge
 
 
-def plunges_of_tool(plan, tc):
-    """(x, y, z) of the plan's plunges made by the tool controller's tool, in order."""
+def plunges_of_tool(plan, tc, start_holes=False):
+    """The plan's plunges made by the tool controller's tool, in order: its start
+    holes for non-centre-cutting plungers, or its own plunges."""
     number = int(tc.ToolNumber)
-    return [(p["x"], p["y"], p["z"]) for p in plan["plunges"] if p["tool_id"] == number]
+    return [p for p in plan["plunges"] if p["tool_id"] == number and bool(p.get("start_hole")) == start_holes]
 
 
 def toolCommands(op, plunges):
@@ -413,7 +449,7 @@ class ObjectPlungeRoughTool(PathOp.ObjectOp):
         plan = plan_of(main) if main is not None and main.Active else None
         if plan is None:
             return
-        plunges = plunges_of_tool(plan, obj.ToolController)
+        plunges = plunges_of_tool(plan, obj.ToolController, bool(getattr(obj, "StartHoles", False)))
         if obj.CoolantMode != main.CoolantMode:
             obj.CoolantMode = main.CoolantMode
         self.commandlist.extend(toolCommands(main, plunges))
@@ -435,11 +471,29 @@ def companions(obj):
     return [o for o in obj.InList if getattr(o, "PlanOperation", None) == obj]
 
 
-def companion_label(obj, tc):
+def companion_label(obj, tc, start_holes=False):
     """"PlungeRough T3 12 mm": no parentheses, which the post would nest in comments."""
     if tc is None:
         return obj.Label + " plunger"
-    return "%s T%d %g mm" % (obj.Label, tc.ToolNumber, float(tc.Tool.Diameter))
+    return "%s T%d %g mm%s" % (obj.Label, tc.ToolNumber, float(tc.Tool.Diameter),
+                               " start holes" if start_holes else "")
+
+
+def start_hole_tcs(tcs):
+    """The tool controllers that drill start holes, as the planner chooses them:
+    for each plunger that does not cut at its centre, the smallest centre-cutting
+    one at least as wide as its core."""
+    specs = {tc: geometry.tool_spec(tc) for tc in tcs}
+    drills = []
+    for tc, spec in specs.items():
+        if spec.get("center_cutting", True):
+            continue
+        able = [d for d, s in specs.items() if s.get("center_cutting", True) and s["diameter"] >= spec["core_diameter"]]
+        if able:
+            drill = min(able, key=lambda d: specs[d]["diameter"])
+            if drill not in drills:
+                drills.append(drill)
+    return drills
 
 
 def removeOrphans(doc):
@@ -464,12 +518,16 @@ def syncCompanions(obj):
         return
     if obj.ToolController != tcs[0]:
         obj.ToolController = tcs[0]
-    existing = {o.ToolController: o for o in companions(obj)}
-    wanted = []
-    for tc in tcs[1:]:
-        comp = existing.pop(tc, None)
+    existing = {(o.ToolController, bool(getattr(o, "StartHoles", False))): o for o in companions(obj)}
+    wanted, before = [], []
+    try:
+        drills = start_hole_tcs(tcs)
+    except ValueError:
+        drills = []  # a bad bit: the operation reports it when it plans
+    for tc, holes in [(d, True) for d in drills] + [(tc, False) for tc in tcs[1:]]:
+        comp = existing.pop((tc, holes), None)
         if comp is None:
-            comp = obj.Document.addObject("Path::FeaturePython", obj.Name + "_T")
+            comp = obj.Document.addObject("Path::FeaturePython", obj.Name + ("_H" if holes else "_T"))
             # Its settings are the Plunge Rough operation's, not the setup sheet's
             # (which knows nothing of companions and would say so in the log).
             comp.addProperty("App::PropertyBool", "DoNotSetDefaultValues", "Path")
@@ -479,14 +537,21 @@ def syncCompanions(obj):
             comp.Active = True
             comp.PlanOperation = obj
             comp.ToolController = tc
-        comp.Label = companion_label(obj, tc)
-        wanted.append(comp)
+            if holes:
+                comp.addProperty("App::PropertyBool", "StartHoles", "Plunge Rough",
+                                 QT_TRANSLATE_NOOP("App::Property", "Drills the start holes of the plan"))
+                comp.StartHoles = True
+                comp.setEditorMode("StartHoles", 1)
+        comp.Label = companion_label(obj, tc, holes)
+        (before if holes else wanted).append(comp)
     for stale in existing.values():
         obj.Document.removeObject(stale.Name)
-    group = [o for o in job.Operations.Group if o not in wanted]
-    at = group.index(obj) + 1 if obj in group else len(group)
-    job.Operations.Group = group[:at] + wanted + group[at:]
-    for comp in wanted:
+    # Start holes are drilled before the operation's own plunges, the other
+    # plungers follow it.
+    group = [o for o in job.Operations.Group if o not in wanted and o not in before]
+    at = group.index(obj) if obj in group else len(group)
+    job.Operations.Group = group[:at] + before + group[at:at + 1] + wanted + group[at + 1:]
+    for comp in before + wanted:
         comp.touch()
 
 

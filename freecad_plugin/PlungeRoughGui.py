@@ -36,6 +36,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             "PeckDepth": PathGui.QuantitySpinBox(self.form.peckDepth, obj, "PeckDepth"),
             "MaxWallStock": PathGui.QuantitySpinBox(self.form.maxWallStock, obj, "MaxWallStock"),
             "MaxFloorStock": PathGui.QuantitySpinBox(self.form.maxFloorStock, obj, "MaxFloorStock"),
+            "LeadOut": PathGui.QuantitySpinBox(self.form.leadOut, obj, "LeadOut"),
         }
 
     def getTitle(self, obj):
@@ -60,6 +61,11 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             obj.Strategy = self.form.strategy.currentText()
         if abs(obj.MinCoverage - self.form.minCoverage.value()) > 1e-9:
             obj.MinCoverage = self.form.minCoverage.value()
+        for prop, box in (("MaxEngagement", self.form.maxEngagement), ("MinEngagement", self.form.minEngagement)):
+            if abs(getattr(obj, prop) - box.value()) > 1e-9:
+                setattr(obj, prop, box.value())
+        if obj.StockAwareHeights != self.form.stockAwareHeights.isChecked():
+            obj.StockAwareHeights = self.form.stockAwareHeights.isChecked()
         self.updateCoolant(obj, self.form.coolantController)
         chosen = []
         for i, tc in enumerate(self._jobToolControllers()):
@@ -80,6 +86,10 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
         self.form.strategy.setCurrentText(obj.Strategy)
         self.form.strategy.blockSignals(False)
         self.form.minCoverage.setValue(obj.MinCoverage)
+        self.form.maxEngagement.setValue(obj.MaxEngagement)
+        self.form.minEngagement.setValue(obj.MinEngagement)
+        self.form.stockAwareHeights.setChecked(obj.StockAwareHeights)
+        self.form.cannedCycleNote.setVisible(obj.UseCannedCycle)
         self.setupCoolant(obj, self.form.coolantController)
         self.form.toolControllers.blockSignals(True)
         self.form.toolControllers.clear()
@@ -99,6 +109,10 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             self.form.peckDepth.editingFinished,
             self.form.maxWallStock.editingFinished,
             self.form.maxFloorStock.editingFinished,
+            self.form.leadOut.editingFinished,
+            self.form.maxEngagement.editingFinished,
+            self.form.minEngagement.editingFinished,
+            self.form.stockAwareHeights.stateChanged,
             self.form.useCannedCycle.stateChanged,
             self.form.autoSelectTools.stateChanged,
             self.form.strategy.currentIndexChanged,
@@ -110,6 +124,8 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
     def updateData(self, obj, prop):
         if prop == "Summary":
             self.form.summary.setText(obj.Summary)
+        if prop == "UseCannedCycle":
+            self.form.cannedCycleNote.setVisible(obj.UseCannedCycle)
 
 
 class ViewProvider(PathOpGui.ViewProvider):

@@ -9,10 +9,13 @@ import Path
 def generate(plunges, clearance_height, safe_height, canned_cycle=False, peck_depth=0.0, return_level="G98"):
     """Commands for one tool's plunges, in order.
 
-    plunges: sequence of (x, y, z) stop points. The tool starts and ends at the
-    clearance height; it rapids between plunges at the safe height and plunges
-    from there to z (the feed rate is the tool controller's vertical feed, set
-    afterwards by PathFeedRate). With canned_cycle, each plunge is a G81 (or G83
+    plunges: sequence of (x, y, z) stop points, or of the plan's plunge dicts
+    (x, y, z, and approach_z, retract_z, lead_out from the planner's stock
+    simulation). The tool starts and ends at the clearance height. With explicit
+    moves it rapids to each plunge at the previous retract height, rapids down
+    to the approach height (the safe height for tuples), feeds to z, feeds along
+    the lead-out and rapids up to the retract height (the feed rates are the
+    tool controller's, set afterwards by PathFeedRate). With canned_cycle, each plunge is a G81 (or G83
     pecking by peck_depth) with the retract plane at the safe height, inside
     G98/G99 ... G80; the rapid to X Y comes first, so that the cycle itself is a
     vertical move.
@@ -26,6 +29,8 @@ def generate(plunges, clearance_height, safe_height, canned_cycle=False, peck_de
     cmds = []
     if not plunges:
         return cmds
+    moves = [_move(p, safe_height) for p in plunges]
+    plunges = [(m["x"], m["y"], m["z"]) for m in moves]
     for x, y, z in plunges:
         if z >= safe_height:
             raise ValueError("a plunge at (%g, %g) stops at %g, not below the safe height" % (x, y, z))
@@ -45,13 +50,31 @@ def generate(plunges, clearance_height, safe_height, canned_cycle=False, peck_de
                 cmds.append(Path.Command("G81", params))
         cmds.append(Path.Command("G80"))
     else:
-        first = True
-        for x, y, z in plunges:
-            cmds.append(Path.Command("G0", {"X": x, "Y": y}))
-            if first:
-                cmds.append(Path.Command("G0", {"Z": safe_height}))
-                first = False
-            cmds.append(Path.Command("G1", {"Z": z}))
-            cmds.append(Path.Command("G0", {"Z": safe_height}))
+        cmds.append(Path.Command("G0", {"X": moves[0]["x"], "Y": moves[0]["y"]}))
+        cmds.append(Path.Command("G0", {"Z": safe_height}))
+        at = safe_height
+        for i, m in enumerate(moves):
+            if i:
+                cmds.append(Path.Command("G0", {"X": m["x"], "Y": m["y"]}))
+            if m["approach_z"] < at:
+                cmds.append(Path.Command("G0", {"Z": m["approach_z"]}))
+            cmds.append(Path.Command("G1", {"Z": m["z"]}))
+            if m["lead_out"] is not None:
+                cmds.append(Path.Command("G1", {"X": m["lead_out"][0], "Y": m["lead_out"][1]}))
+            # The last plunge of the operation leaves at the safe height.
+            at = safe_height if i == len(moves) - 1 else max(m["retract_z"], m["z"])
+            cmds.append(Path.Command("G0", {"Z": at}))
     cmds.append(Path.Command("G0", {"Z": clearance_height}))
     return cmds
+
+
+def _move(p, safe_height):
+    """A plunge as a dict with its heights and lead-out (a tuple: at the safe height)."""
+    if isinstance(p, dict):
+        lead = p.get("lead_out")
+        return {"x": p["x"], "y": p["y"], "z": p["z"],
+                "approach_z": min(p.get("approach_z", safe_height), safe_height),
+                "retract_z": min(p.get("retract_z", safe_height), safe_height),
+                "lead_out": tuple(lead) if lead is not None else None}
+    x, y, z = p
+    return {"x": x, "y": y, "z": z, "approach_z": safe_height, "retract_z": safe_height, "lead_out": None}

@@ -282,6 +282,37 @@ class Grower {
       settle();
       stalls = targets.left() < before ? 0 : stalls + 1;
     }
+    finishSlivers(tool, cutter, planned, targets);
+  }
+
+  // Pieces of the tool's planned cut narrower than the stock's cells, which the
+  // raster cannot see, measured exactly (polygons): each is cut by the planned
+  // plunge that covers most of it, where that keeps the limits.
+  void finishSlivers(const Tool& tool, const Cutter& cutter, const std::vector<Plunge>& planned, Targets& targets) {
+    settle();
+    std::vector<Circle> want;
+    for (const Plunge& p : planned) want.push_back({{p.x, p.y}, cutter.radius});
+    const double coreR = tool.centerCutting ? 0.0 : 0.5 * tool.coreDiameter;
+    const double e = std::min(engagementLimit(tool), 2 * cutter.radius) + 2 * stock_.spacing();
+    for (const Polygons& piece : poly::components(poly::subtract(poly::unionOfDisks(want), cleared_))) {
+      if (poly::area(piece) < 0.01) continue;
+      int best = -1;
+      size_t inside = 0;
+      for (size_t k = 0; k < planned.size(); ++k) {
+        size_t n = 0;
+        for (Vec2 v : piece.front()) n += dist(v, want[k].c) <= cutter.radius + 1e-6;
+        if (n > inside) {
+          inside = n;
+          best = static_cast<int>(k);
+        }
+      }
+      if (best < 0) continue;
+      const Plunge& s = planned[best];
+      const HeightField::Contact k = stock_.contact({s.x, s.y}, cutter, s.z, coreR);
+      if (!k.coreClear || k.engagement > e) continue;
+      place(tool, cutter, {s.x, s.y}, s.z, targets, false);
+    }
+    settle();
   }
 
   void place(const Tool& tool, const Cutter& cutter, Vec2 c, double z, Targets& targets, bool start) {

@@ -35,83 +35,6 @@ void forEachGroup(const std::vector<Plunge>& order, F f) {
 // Height of the tool's corner above its tip: the flutes above it cut walls.
 double cornerHeight(const Tool& t) { return cutterProfile(cutterOf(t), 0.5 * t.diameter); }
 
-}  // namespace
-
-HeightField stockOf(const PlanInput& in, const Region& region) {
-  double rMin = 0.5 * in.tools.back().diameter, limit = rMin;
-  for (const Tool& t : in.tools) {
-    rMin = std::min(rMin, 0.5 * t.diameter);
-    if (t.minEngagement > 0) limit = std::min(limit, t.minEngagement);
-    if (t.maxEngagement > 0) limit = std::min(limit, t.maxEngagement);
-  }
-  const double rMax = 0.5 * in.tools.front().diameter;
-  const Vec2 lo = region.minCorner() - Vec2{rMax, rMax}, hi = region.maxCorner() + Vec2{rMax, rMax};
-  return HeightField(lo, hi, heightFieldSpacing(lo, hi, rMin, limit), in.topZ);
-}
-
-std::vector<Plunge> splitIntoLevels(const PlanInput& in, const Region& region, const std::vector<Plunge>& ordered,
-                                    PlanStats& stats) {
-  HeightField stock = stockOf(in, region);
-  std::vector<Plunge> out;
-  stats.levels = 1;
-  forEachGroup(ordered, [&](size_t i, size_t j) {
-    const Tool& t = toolOf(in.tools, ordered[i].toolId);
-    const Cutter cutter = cutterOf(t);
-    std::vector<double> top;
-    int levels = 1;
-    const double step = t.fluteLength - cornerHeight(t);
-    for (size_t k = i; k < j; ++k) {
-      top.push_back(stock.highest({ordered[k].x, ordered[k].y}, cutter.radius));
-      if (t.fluteLength > 0.0)
-        levels = std::max(levels, static_cast<int>(std::ceil((top.back() - ordered[k].z) / step - 1e-9)));
-    }
-    stats.levels = std::max(stats.levels, levels);
-    for (int level = 1; level <= levels; ++level)
-      for (size_t k = i; k < j; ++k) {
-        Plunge p = ordered[k];
-        p.z = level == levels ? p.z : std::max(p.z, top[k - i] - level * step);
-        // Already at its depth on an earlier level.
-        if (level > 1 && std::max(ordered[k].z, top[k - i] - (level - 1) * step) <= ordered[k].z) continue;
-        p.level = level - 1;
-        out.push_back(p);
-        stock.cut({p.x, p.y}, cutter, p.z);
-      }
-  });
-  return out;
-}
-
-namespace {
-
-// The lead-out end of a plunge just made (stock already cut by it), or none.
-std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const DepthSolver& depths,
-                              const HeightField& stock, const Plunge& p, const Cutter& cutter) {
-  const Vec2 c{p.x, p.y};
-  std::optional<Vec2> best;
-  double bestRoom = -1.0;
-  const int samples = std::max(2, static_cast<int>(std::ceil(in.leadOut / (0.25 * cutter.radius))));
-  for (int d = 0; d < 16; ++d) {
-    const double a = 2 * M_PI * d / 16;
-    const Vec2 end = c + Vec2{std::cos(a), std::sin(a)} * in.leadOut;
-    // Into uncut material (cells touching the moved disk: the crescent it adds is
-    // narrower than a cell).
-    if (stock.materialCells(end, cutter, p.z, 0.71 * stock.spacing()) > 0) continue;
-    bool ok = true;
-    for (int s = 1; s <= samples && ok; ++s) {
-      const Vec2 q = c + (end - c) * (static_cast<double>(s) / samples);
-      // No gouge: walls and islands, and the floor under the moving tool.
-      ok = region.diskFits(q, cutter.radius + in.radialAllowance) &&
-           depths.stopHeight(q, cutter) + in.floorAllowance <= p.z + 1e-6;
-    }
-    if (!ok) continue;
-    const double room = region.wallDistance(end, 4 * cutter.radius);
-    if (room > bestRoom + 1e-9) {
-      bestRoom = room;
-      best = end;
-    }
-  }
-  return best;
-}
-
 // The plunges made so far, for the heights of rapids. Stock at a point is the
 // lowest cut surface of the disks covering it, or top_z (stock or wall) where
 // none does, so the highest stock under a rapid's swept disk is at most the
@@ -169,6 +92,87 @@ class Touched {
 
 }  // namespace
 
+HeightField stockOf(const PlanInput& in, const Region& region) {
+  double rMin = 0.5 * in.tools.back().diameter, limit = rMin;
+  for (const Tool& t : in.tools) {
+    rMin = std::min(rMin, 0.5 * t.diameter);
+    if (t.minEngagement > 0) limit = std::min(limit, t.minEngagement);
+    if (t.maxEngagement > 0) limit = std::min(limit, t.maxEngagement);
+  }
+  const double rMax = 0.5 * in.tools.front().diameter;
+  const Vec2 lo = region.minCorner() - Vec2{rMax, rMax}, hi = region.maxCorner() + Vec2{rMax, rMax};
+  return HeightField(lo, hi, heightFieldSpacing(lo, hi, rMin, limit), in.topZ);
+}
+
+std::vector<Plunge> splitIntoLevels(const PlanInput& in, const std::vector<Plunge>& ordered,
+                                    PlanStats& stats) {
+  Touched touched(in.tools.front().diameter, in.topZ);
+  std::vector<Plunge> out;
+  stats.levels = 1;
+  forEachGroup(ordered, [&](size_t i, size_t j) {
+    const Tool& t = toolOf(in.tools, ordered[i].toolId);
+    const Cutter cutter = cutterOf(t);
+    std::vector<double> top;
+    int levels = 1;
+    const double step = t.fluteLength - cornerHeight(t);
+    for (size_t k = i; k < j; ++k) {
+      const Vec2 c{ordered[k].x, ordered[k].y};
+      top.push_back(touched.highestAlong(c, c, cutter.radius));
+      if (t.fluteLength > 0.0)
+        levels = std::max(levels, static_cast<int>(std::ceil((top.back() - ordered[k].z) / step - 1e-9)));
+    }
+    stats.levels = std::max(stats.levels, levels);
+    for (int level = 1; level <= levels; ++level)
+      for (size_t k = i; k < j; ++k) {
+        Plunge p = ordered[k];
+        p.z = level == levels ? p.z : std::max(p.z, top[k - i] - level * step);
+        // Already at its depth on an earlier level.
+        if (level > 1 && std::max(ordered[k].z, top[k - i] - (level - 1) * step) <= ordered[k].z) continue;
+        p.level = level - 1;
+        out.push_back(p);
+        touched.add({p.x, p.y}, cutter.radius, p.z + cornerHeight(t));
+      }
+  });
+  return out;
+}
+
+namespace {
+
+// The lead-out end of a plunge just made (stock already cut by it), or none.
+std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const DepthSolver& depths,
+                              const HeightField& stock, const Touched& touched, const Plunge& p,
+                              const Cutter& cutter) {
+  const Vec2 c{p.x, p.y};
+  std::optional<Vec2> best;
+  double bestRoom = -1.0;
+  const int samples = std::max(2, static_cast<int>(std::ceil(in.leadOut / (0.25 * cutter.radius))));
+  for (int d = 0; d < 16; ++d) {
+    const double a = 2 * M_PI * d / 16;
+    const Vec2 end = c + Vec2{std::cos(a), std::sin(a)} * in.leadOut;
+    // Into uncut material (cells touching the moved disk: the crescent it adds is
+    // narrower than a cell).
+    if (stock.materialCells(end, cutter, p.z, 0.71 * stock.spacing()) > 0 ||
+        touched.highestAlong(c, end, cutter.radius) > p.z + cutterProfile(cutter, cutter.radius) + kEngagementSkin)
+      continue;
+    bool ok = true;
+    for (int s = 1; s <= samples && ok; ++s) {
+      const Vec2 q = c + (end - c) * (static_cast<double>(s) / samples);
+      // No gouge: walls and islands, and the floor under the moving tool.
+      ok = region.diskFits(q, cutter.radius + in.radialAllowance) &&
+           depths.stopHeight(q, cutter) + in.floorAllowance <= p.z + 1e-6;
+    }
+    if (!ok) continue;
+    const double room = region.wallDistance(end, 4 * cutter.radius);
+    if (room > bestRoom + 1e-9) {
+      bestRoom = room;
+      best = end;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
 void planMotion(const PlanInput& in, const Region& region, const DepthSolver& depths, Plan& plan) {
   HeightField stock = stockOf(in, region);
   std::vector<Plunge>& ps = plan.plunges;
@@ -207,7 +211,7 @@ void planMotion(const PlanInput& in, const Region& region, const DepthSolver& de
     stock.cut(c, cutter, p.z);
     touched.add(c, r, p.z + cornerHeight(t));
     p.leadOut.reset();
-    if (in.leadOut > 0.0) p.leadOut = leadOutOf(in, region, depths, stock, p, cutter);
+    if (in.leadOut > 0.0) p.leadOut = leadOutOf(in, region, depths, stock, touched, p, cutter);
     if (p.leadOut) touched.add(*p.leadOut, r, p.z + cornerHeight(t));
     p.retractZ = in.safeZ;
   }

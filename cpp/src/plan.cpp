@@ -435,7 +435,7 @@ Plan plan(PlanInput in, const Progress& progress) {
     HeightField stock = stockOf(in, region);
     out.plunges = growWithinLimits(in, region, depths, out.plunges, stock, progress);
   }
-  out.plunges = splitIntoLevels(in, region, out.plunges, out.stats);
+  out.plunges = splitIntoLevels(in, out.plunges, out.stats);
   coverageStats(in, region, core, limited ? coverOf(in, out, core) : cover, out);
   planMotion(in, region, depths, out);
   floorStock(in, region, *floor, out, progress);

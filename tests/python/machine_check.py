@@ -28,6 +28,8 @@ from shapely.geometry import LineString, Point, Polygon
 SKIN = 0.5
 # Wall and floor contact allowed: the G-code's 4 decimals move a point by up to 7e-5 mm.
 GOUGE_TOL = 1e-3
+# A rapid may pass within this of stock (the planner ignores slivers under 0.01 mm).
+RAPID_TOL = 0.02
 WORD = re.compile(r"([A-Z])\s*([-+]?[0-9]*\.?[0-9]+)")
 
 
@@ -88,7 +90,7 @@ class Check:
         x0, y0, x1, y1 = self.pocket.bounds
         self.lo = np.array([x0 - r_max - 1, y0 - r_max - 1])
         if spacing is None:
-            limits = [t[k] for t in tools for k in ("max_engagement", "min_engagement") if k in t]
+            limits = [t["max_engagement"] for t in tools if "max_engagement" in t]
             spacing = max(min([r_min / 8] + [v / 6 for v in limits]), math.sqrt((x1 - x0) * (y1 - y0) / 3e6))
         self.h = spacing
         self.n = (np.ceil((np.array([x1 + r_max + 1, y1 + r_max + 1]) - self.lo) / spacing)).astype(int) + 1
@@ -115,7 +117,7 @@ class Check:
         (sy, sx), (X, Y) = self.window((a[0] + b[0]) / 2, (a[1] + b[1]) / 2,
                                        math.dist(a, b) / 2 + r + self.h)
         d = self._segment_distance(X, Y, a, b)
-        under = d <= r
+        under = d <= r - RAPID_TOL
         return float(self.z[sy, sx][under].max()) if under.any() else -math.inf
 
     @staticmethod

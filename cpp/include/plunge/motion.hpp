@@ -25,7 +25,7 @@ namespace plunge {
 
 // Splits the plunges of tools with a flute length into levels (same positions,
 // stepping down); returns the new order and sets stats.levels.
-std::vector<Plunge> splitIntoLevels(const PlanInput& in, const Region& region, const std::vector<Plunge>& ordered,
+std::vector<Plunge> splitIntoLevels(const PlanInput& in, const std::vector<Plunge>& ordered,
                                     PlanStats& stats);
 
 // The height field every simulation of a plan uses (bounds, spacing).

@@ -1,0 +1,143 @@
+"""Real plunge mills: plans posted as G-code by the command-line tool, run
+through the G-code checker (machine_check.py: a simulated stock independent of
+the planner) on random pockets and the bundled examples."""
+import json
+import os
+import subprocess
+
+import pytest
+from shapely.geometry import Polygon
+
+from geometry_check import assert_no_gouge, core_left
+from machine_check import assert_machinable, check_program
+from test_stock import random_pocket
+
+EXAMPLES = os.path.join(os.path.dirname(__file__), "..", "..", "resources", "examples")
+
+
+def mill(data, kind):
+    """The pocket's tools as real plunge mills of one kind."""
+    data = json.loads(json.dumps(data))
+    tools = data["tools"]
+    largest = max(t["diameter"] for t in tools)
+    for t in tools:
+        d = t["diameter"]
+        if kind == "half":
+            t["max_engagement"] = 0.5 * d
+        elif kind == "quarter":
+            t["max_engagement"] = 0.25 * d
+            t["min_engagement"] = 0.05 * d
+        elif kind == "plunge_cutter" and d == largest:  # indexable: a core, a band, a sweet spot
+            t.update(center_cutting=False, core_diameter=0.3 * d, max_engagement=0.5 * d, min_engagement=0.1 * d)
+        elif kind == "short_flutes":
+            t["flute_length"] = 5.0
+    return data
+
+
+def post(cli, data, tmp_path):
+    src = tmp_path / "in.json"
+    src.write_text(json.dumps(data))
+    out, nc = tmp_path / "plan.json", tmp_path / "plan.nc"
+    run = subprocess.run([cli, "plan", str(src), "-o", str(out), "--gcode", str(nc)], capture_output=True, text=True,
+                         timeout=300)
+    assert run.returncode == 0, run.stderr
+    return json.loads(out.read_text()), nc.read_text()
+
+
+@pytest.mark.parametrize("kind", ["half", "quarter", "plunge_cutter", "short_flutes"])
+@pytest.mark.parametrize("seed", range(3))
+def test_random_pockets_pass_the_checker(cli, tmp_path, seed, kind):
+    data = mill(random_pocket(seed), kind)
+    if not Polygon(data["boundary"], data["islands"]).is_valid:
+        pytest.skip("the random walls cross")
+    plan, gcode = post(cli, data, tmp_path)
+    report = check_program(data, data["tools"], gcode)
+    # Flat floors: every limit kept, no gouge, no rapid through stock.
+    assert_machinable(report)
+    stats = plan["stats"]
+    assert stats["over_engaged"] == 0
+    assert report["plunges"] == stats["plunge_count"] == len(plan["plunges"])
+    assert report["lead_outs"] == sum("lead_out" in p for p in plan["plunges"]) > 0
+    # Thin cuts are never hidden (the two rasters count them differently near the limit).
+    if report["thin"]:
+        assert stats["thin_cuts"] > 0 and any("min engagement" in w for w in plan["warnings"])
+    assert_no_gouge(data, plan)
+    # Growing within the limits still cuts the core (slivers under 0.5 mm^2 aside).
+    assert sum(core_left(data, plan, data["max_wall_stock"])) < 0.5
+    if kind == "plunge_cutter":
+        assert stats["start_holes"] >= 1
+        holes = [p for p in plan["plunges"] if p["start_hole"]]
+        assert plan["plunges"][:len(holes)] == holes  # drilled first
+        assert all(p["diameter"] >= 0.3 * max(t["diameter"] for t in data["tools"]) for p in holes)
+    if kind == "short_flutes":
+        assert stats["levels"] == 3  # 12 mm (less the floor allowance) in 5 mm levels
+    for k in ("half", "quarter"):
+        if kind == k:
+            fraction = 0.5 if k == "half" else 0.25
+            for t in data["tools"]:
+                measured = report["max_engagement"].get(t["id"], 0.0)
+                assert measured <= fraction * t["diameter"] + 1.5 * 0.5, (t, measured)
+
+
+def test_limits_cost_plunges_and_stock_aware_heights_save_time(cli, tmp_path):
+    data = json.load(open(os.path.join(EXAMPLES, "pocket.json")))
+    free, _ = post(cli, data, tmp_path)
+    half, _ = post(cli, mill(data, "half"), tmp_path)
+    quarter, _ = post(cli, mill(data, "quarter"), tmp_path)
+    assert free["stats"]["plunge_count"] < half["stats"]["plunge_count"] < quarter["stats"]["plunge_count"]
+    for plan in (free, half, quarter):
+        s = plan["stats"]
+        assert s["estimated_minutes"] < s["minutes_at_safe_height"]
+    at_safe, _ = post(cli, dict(data, stock_aware_heights=False), tmp_path)
+    assert all(p["approach_z"] == data["safe_z"] and p["retract_z"] == data["safe_z"] for p in at_safe["plunges"])
+    assert abs(at_safe["stats"]["estimated_minutes"] - at_safe["stats"]["minutes_at_safe_height"]) < 1e-9
+
+
+def test_sculptured_example_with_a_plunge_cutter(cli, tmp_path):
+    data = mill(json.load(open(os.path.join(EXAMPLES, "sculptured.json"))), "plunge_cutter")
+    plan, gcode = post(cli, data, tmp_path)
+    report = check_program(data, data["tools"], gcode)
+    # No gouge (walls, floor, lead-outs) and no rapid through stock, as on flat floors.
+    for key in ("gouges", "rapid_through_stock", "lead_out_into_material", "too_deep"):
+        assert not report[key], (key, report[key][:3])
+    # Over a sculptured floor uneven depths can leave thick steps: the few plunges
+    # that meet more than their limit there are the plan's own warnings (within
+    # the rasters' difference).
+    assert len(report["over_engaged"]) <= plan["stats"]["over_engaged"] + 3
+    assert len(report["core_on_material"]) <= 5
+    assert plan["stats"]["start_holes"] >= 1
+
+
+def test_lead_out_zero_retracts_straight_up(cli, tmp_path):
+    data = json.load(open(os.path.join(EXAMPLES, "pocket.json")))
+    plan, gcode = post(cli, dict(data, lead_out=0), tmp_path)
+    assert not any("lead_out" in p for p in plan["plunges"])
+    assert not [line for line in gcode.splitlines() if line.startswith("G1 X")]
+
+
+@pytest.mark.parametrize("tool, message", [
+    ({"diameter": 20, "center_cutting": False}, "core_diameter"),
+    ({"diameter": 20, "center_cutting": False, "core_diameter": 25}, "below 90 %"),
+    ({"diameter": 20, "core_diameter": 6}, "do not cut at the centre"),
+    ({"diameter": 20, "max_engagement": 0.5}, "below 5 % of the diameter"),
+    ({"diameter": 20, "max_engagement": 5, "min_engagement": 8}, "above its max_engagement"),
+    ({"diameter": 20, "max_engagement": -1}, "must be > 0"),
+    ({"diameter": 20, "shape": "ball", "flute_length": 10}, "flute_length must exceed the corner radius"),
+    ({"diameter": 20, "center_cutting": "no"}, "expected true or false"),
+])
+def test_bad_mills_are_refused(cli, tmp_path, tool, message):
+    data = {"boundary": [[0, 0], [120, 0], [120, 80], [0, 80]], "tools": [tool], "floor": {"z": -10}}
+    src = tmp_path / "in.json"
+    src.write_text(json.dumps(data))
+    run = subprocess.run([cli, "plan", str(src)], capture_output=True, text=True, timeout=60)
+    assert run.returncode == 2 and message in run.stderr and len(run.stderr.splitlines()) == 1, run.stderr
+
+
+def test_a_plunge_cutter_needs_a_centre_cutting_tool_for_its_start_holes(cli, tmp_path):
+    data = {"boundary": [[0, 0], [120, 0], [120, 80], [0, 80]], "floor": {"z": -10},
+            "tools": [{"diameter": 25, "center_cutting": False, "core_diameter": 10}, {"diameter": 8}]}
+    src = tmp_path / "in.json"
+    src.write_text(json.dumps(data))
+    run = subprocess.run([cli, "plan", str(src)], capture_output=True, text=True, timeout=60)
+    assert run.returncode == 2
+    assert "does not cut at its centre" in run.stderr and "at least 10 mm wide" in run.stderr
