@@ -424,6 +424,13 @@ def summary(plan):
     text = "%d plunges (%s), coverage %.2f %%, travel %.0f mm, about %.0f min; %s" % (
         s["plunge_count"], ", ".join(parts), 100 * s["coverage"], s["travel_length"], s["estimated_minutes"],
         stock_report(s))
+    if s.get("start_holes"):
+        text += "; %d start holes" % s["start_holes"]
+    if s.get("levels", 1) > 1:
+        text += "; %d levels (flute length)" % s["levels"]
+    saved = s.get("minutes_at_safe_height", 0.0) - s["estimated_minutes"]
+    if saved > 0.05:
+        text += "; %.1f min saved by stock-aware heights" % saved
     if plan.get("warnings"):
         text += "; " + "; ".join(plan["warnings"])
     selection = plan.get("tool_selection")

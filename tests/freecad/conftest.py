@@ -7,7 +7,8 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 BUILD = os.environ.get("PLUNGE_BUILD_DIR", os.path.join(ROOT, "build"))
-for p in (HERE, ROOT, os.path.join(BUILD, "cpp")):
+# tests/python: the G-code checker (machine_check.py) and geometry checks.
+for p in (os.path.join(ROOT, "tests", "python"), HERE, ROOT, os.path.join(BUILD, "cpp")):
     if p not in sys.path:
         sys.path.insert(0, p)
 

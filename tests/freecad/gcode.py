@@ -68,3 +68,19 @@ def path_blocks(op):
     """An operation's Path commands as blocks."""
     return [([c.Name], {k.upper(): v for k, v in c.Parameters.items()}) for c in op.Path.Commands
             if not c.Name.startswith("(")]
+
+
+def job_program(job):
+    """A Job's operations as one G-code text: a tool change at each operation's
+    tool controller, then its Path commands (what the post writes, unformatted)."""
+    lines = []
+    for op in job.Operations.Group:
+        if not getattr(op, "Active", True) or not hasattr(op, "Path"):
+            continue
+        lines.append("T%d M6" % int(op.ToolController.ToolNumber))
+        for c in op.Path.Commands:
+            if c.Name.startswith("("):
+                continue
+            words = " ".join("%s%.4f" % (k.upper(), v) for k, v in c.Parameters.items() if k.upper() in "XYZRQ")
+            lines.append("%s %s" % (c.Name, words))
+    return "\n".join(lines) + "\n"

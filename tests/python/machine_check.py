@@ -47,6 +47,8 @@ def profile(tool, rho):
 def floor_function(data):
     """The floor height z(x, y) of a plan input (flat or expression), numpy-vectorised."""
     floor = data["floor"]
+    if "brep" in floor:
+        return None  # BREP faces: the floor checks are FreeCAD's own (tests/freecad)
     if "z" in floor:
         return lambda x, y: np.full_like(np.asarray(x, dtype=float), floor["z"])
     expr = floor["expression"].replace("^", "**")
@@ -186,6 +188,8 @@ class Check:
         p = Point(x, y)
         if not self.pocket.contains(p) or self.walls.distance(p) < r + self.radial - GOUGE_TOL:
             self.report["gouges"].append((what, "wall", round(x, 3), round(y, 3)))
+        if self.floor is None:
+            return
         (sy, sx), (X, Y) = self.window(x, y, r)
         rho = np.hypot(X - x, Y - y)
         disk = rho <= r

@@ -1,0 +1,88 @@
+#include <gtest/gtest.h>
+
+#include "plunge/heightfield.hpp"
+#include "plunge/motion.hpp"
+#include "plunge/plan.hpp"
+#include "plunge/region.hpp"
+
+using namespace plunge;
+
+namespace {
+
+PlanInput pocket() {
+  PlanInput in;
+  in.boundary = {{0, 0}, {120, 0}, {120, 80}, {0, 80}};
+  in.islands = {{{50, 30}, {70, 30}, {60, 50}}};
+  in.tools = {{20, 1, 100}, {10, 2, 100}};
+  in.floor.z = -12;
+  in.floorAllowance = 0.2;
+  in.radialAllowance = 0.3;
+  return in;
+}
+
+}  // namespace
+
+// Replayed on a fresh height field: no rapid down or across below the stock,
+// approaches below the safe height where the stock allows, lead-outs clear of
+// walls and islands and into cut stock only.
+TEST(Motion, HeightsAndLeadOutsKeepClearOfTheStock) {
+  const PlanInput in = pocket();
+  const Plan p = plan(in);
+  const Region region(in.boundary, in.islands);
+  HeightField f({-15, -15}, {135, 95}, 0.1, in.topZ);
+  int low = 0, leads = 0;
+  for (size_t i = 0; i < p.plunges.size(); ++i) {
+    const Plunge& q = p.plunges[i];
+    const double r = 0.5 * q.diameter;
+    EXPECT_GE(q.approachZ, f.highest({q.x, q.y}, r - 0.05)) << i;
+    low += q.approachZ < in.safeZ;
+    const Cutter c{CutterShape::Flat, r, 0.0};
+    f.cut({q.x, q.y}, c, q.z);
+    if (q.leadOut) {
+      ++leads;
+      EXPECT_NEAR(dist(*q.leadOut, {q.x, q.y}), in.leadOut, 1e-9);
+      EXPECT_GE(region.wallDistance(*q.leadOut, 100), r + in.radialAllowance - 1e-9);
+      EXPECT_EQ(f.materialCells(*q.leadOut, c, q.z), 0);
+      f.cut(*q.leadOut, c, q.z);
+    }
+    if (i + 1 < p.plunges.size()) {
+      const Plunge& n = p.plunges[i + 1];
+      const Vec2 from = q.leadOut ? *q.leadOut : Vec2{q.x, q.y};
+      EXPECT_GE(q.retractZ, f.highestAlong(from, {n.x, n.y}, 0.5 * q.diameter - 0.05)) << i;
+      EXPECT_GE(q.retractZ, n.approachZ);
+    }
+  }
+  EXPECT_GT(low, static_cast<int>(p.plunges.size()) / 2);
+  EXPECT_GT(leads, 0);
+  EXPECT_DOUBLE_EQ(p.plunges.back().retractZ, in.safeZ);
+  EXPECT_LT(p.stats.estimatedMinutes, p.stats.minutesAtSafeHeight);
+}
+
+TEST(Motion, WithoutStockAwareHeightsEverythingAtSafeZ) {
+  PlanInput in = pocket();
+  in.stockAwareHeights = false;
+  in.leadOut = 0;
+  const Plan p = plan(in);
+  for (const Plunge& q : p.plunges) {
+    EXPECT_DOUBLE_EQ(q.approachZ, in.safeZ);
+    EXPECT_DOUBLE_EQ(q.retractZ, in.safeZ);
+    EXPECT_FALSE(q.leadOut);
+  }
+  EXPECT_NEAR(p.stats.estimatedMinutes, p.stats.minutesAtSafeHeight, 1e-12);
+}
+
+// Flutes of 5 mm over 12.2 mm of material: three levels, none cutting deeper than 5.
+TEST(Motion, ShortFlutesCutInLevels) {
+  PlanInput in = pocket();
+  for (Tool& t : in.tools) t.fluteLength = 5.0;
+  const Plan p = plan(in);
+  EXPECT_EQ(p.stats.levels, 3);
+  HeightField f({-15, -15}, {135, 95}, 0.1, in.topZ);
+  for (const Plunge& q : p.plunges) {
+    const Cutter c{CutterShape::Flat, 0.5 * q.diameter, 0.0};
+    EXPECT_LE(f.contact({q.x, q.y}, c, q.z).deepest, 5.0 + 1e-6) << q.x << " " << q.y << " " << q.z;
+    f.cut({q.x, q.y}, c, q.z);
+    if (q.leadOut) f.cut(*q.leadOut, c, q.z);
+  }
+  EXPECT_TRUE(p.warnings.empty() || p.warnings.front().find("flute") == std::string::npos);
+}
