@@ -9,8 +9,10 @@ recompute, post with the linuxcnc post. Writes into $PLUNGE_OUT (default ./out):
   plunge_rough.ngc       the posted G-code;
   plunge_rough.svg       the plan picture;
   summary.txt            plunges per tool, coverage, travel, estimated time;
+  demo_input.json        the planner's input for the operation (demo_floor.brep: its floor);
   bits/                  the tool bit files.
 A failure is written to demo_error.txt (the GUI has no terminal)."""
+import json
 import os
 import shutil
 import sys
@@ -55,13 +57,23 @@ def main():
         f.write(gcode)
     shutil.copyfile(PlungeRough.plan_picture(op), os.path.join(OUT, "plunge_rough.svg"))
     doc.saveAs(os.path.join(OUT, "plunge_example.FCStd"))
+    # The planner's input for this operation, with its floor faces beside it: the
+    # command-line tool plans it again (tests/bench/bench_mills.py does).
+    data = json.loads(op.PlanData)["input"]
+    if "brep" in data["floor"]:
+        shutil.copyfile(data["floor"]["brep"], os.path.join(OUT, "demo_floor.brep"))
+        data["floor"]["brep"] = "demo_floor.brep"
+    with open(os.path.join(OUT, "demo_input.json"), "w") as f:
+        json.dump(data, f, indent=1)
 
     lines = ["Plunge Rough on %s.%s (FreeCAD %s)" % (job.Model.Group[0].Label, face,
                                                       ".".join(FreeCAD.Version()[:3])),
              op.Summary, "", "operations in the job (each tool cuts its own plunges):"]
     for o in job.Operations.Group:
         tc = o.ToolController
-        plunges = sum(1 for c in o.Path.Commands if c.Name in ("G1", "G81", "G83"))
+        # Plunges: feeds down (G1 with Z only; the lead-outs move in X Y) and cycles.
+        plunges = sum(1 for c in o.Path.Commands
+                      if c.Name in ("G81", "G83") or (c.Name == "G1" and "Z" in c.Parameters and "X" not in c.Parameters))
         lines.append("  %-28s T%d %5.1f mm  %3d plunges, plunge feed %s" % (
             o.Label, tc.ToolNumber, float(tc.Tool.Diameter), plunges,
             "%g mm/min" % tc.VertFeed.getValueAs("mm/min").Value))

@@ -1,0 +1,62 @@
+#!/usr/bin/env python3
+"""Real plunge mills benchmark: plunges and estimated cycle time with a radial
+engagement limit of 0.5 x D and 0.25 x D against the unlimited plan, and the
+time stock-aware heights save against retracting to the safe height (a table
+for the README). Shapes: the test shapes, the examples and, when the README's
+main command has run, the FreeCAD demo's operation (out/demo_input.json).
+
+    /usr/bin/python3 tests/bench/bench_mills.py [shape ...]
+"""
+import argparse
+import json
+import os
+import subprocess
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+CLI = os.path.join(ROOT, "build", "cpp", "plunge-rough")
+SHAPES = {name: os.path.join(ROOT, "tests", "data", "shapes", name + ".json")
+          for name in ("benchmark", "convex", "concave", "islands", "freeform", "neck")}
+SHAPES["example pocket"] = os.path.join(ROOT, "resources", "examples", "pocket.json")
+SHAPES["example sculptured"] = os.path.join(ROOT, "resources", "examples", "sculptured.json")
+SHAPES["FreeCAD demo"] = os.path.join(ROOT, "out", "demo_input.json")
+
+
+def plan(path, limit, tmp):
+    data = json.load(open(path))
+    if limit:
+        for t in data["tools"]:
+            t["max_engagement"] = limit * t["diameter"]
+    src = os.path.join(os.path.dirname(path), ".bench_mills_input.json")
+    with open(src, "w") as f:  # beside the original: a relative floor.brep still resolves
+        json.dump(data, f)
+    out = os.path.join(tmp, "plan.json")
+    try:
+        subprocess.run([CLI, "plan", src, "-o", out], check=True, stderr=subprocess.DEVNULL)
+    finally:
+        os.remove(src)
+    return json.load(open(out))["stats"]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("shapes", nargs="*", default=list(SHAPES))
+    args = ap.parse_args()
+    print("| shape | plunges: unlimited / 0.5 D / 0.25 D | minutes: unlimited / 0.5 D / 0.25 D | "
+          "minutes at safe height (unlimited) | saved by stock-aware heights |")
+    print("|---|---|---|---|---|")
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in args.shapes:
+            if not os.path.exists(SHAPES[name]):
+                continue
+            runs = [plan(SHAPES[name], limit, tmp) for limit in (None, 0.5, 0.25)]
+            free = runs[0]
+            print("| %s | %s | %s | %.1f | %.1f min (%.0f %%) |" % (
+                name, " / ".join(str(s["plunge_count"]) for s in runs),
+                " / ".join("%.1f" % s["estimated_minutes"] for s in runs), free["minutes_at_safe_height"],
+                free["minutes_at_safe_height"] - free["estimated_minutes"],
+                100 * (1 - free["estimated_minutes"] / free["minutes_at_safe_height"])), flush=True)
+
+
+if __name__ == "__main__":
+    main()
