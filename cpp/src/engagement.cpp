@@ -214,15 +214,6 @@ class Grower {
     if (z >= in_.topZ) return std::nullopt;
     return z;
   }
-  Plunge plungeOf(const Tool& t, Vec2 c, double z) const {
-    Plunge p;
-    p.x = c.x;
-    p.y = c.y;
-    p.diameter = t.diameter;
-    p.toolId = t.id;
-    p.z = z;
-    return p;
-  }
 
   // Grows the tool's cut over its targets (the plunges the plan gave it).
   void grow(const Tool& tool, const std::vector<Plunge>& planned) {

@@ -136,6 +136,16 @@ Cutter cutterOf(const Tool& t) {
   return {t.shape, 0.5 * t.diameter, t.shape == CutterShape::Ball ? 0.5 * t.diameter : t.cornerRadius};
 }
 
+Plunge plungeOf(const Tool& t, Vec2 c, double z) {
+  Plunge p;
+  p.x = c.x;
+  p.y = c.y;
+  p.diameter = t.diameter;
+  p.toolId = t.id;
+  p.z = z;
+  return p;
+}
+
 namespace {
 
 std::unique_ptr<FloorSurface> makeFloor(const PlanInput& in) {
@@ -234,13 +244,7 @@ void sequence(const PlanInput& in, const std::vector<CutDisk>& disks, Plan& out)
     for (int i : tour(pts, false, at, to)) {
       const Vec2 p = pts[i];
       if (!out.plunges.empty()) out.stats.travelLength += dist({out.plunges.back().x, out.plunges.back().y}, p);
-      Plunge made;
-      made.x = p.x;
-      made.y = p.y;
-      made.diameter = in.tools[t].diameter;
-      made.toolId = in.tools[t].id;
-      made.z = mine[i]->z;
-      out.plunges.push_back(made);
+      out.plunges.push_back(plungeOf(in.tools[t], p, mine[i]->z));
       at = p;
     }
     out.stats.perTool.push_back({in.tools[t].id, in.tools[t].diameter, static_cast<int>(pts.size())});

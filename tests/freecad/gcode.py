@@ -1,25 +1,7 @@
 """Reading G-code and Path commands back: plunges per tool, rapids and their heights."""
-import re
-
-WORD = re.compile(r"([A-Z])\s*([-+]?[0-9]*\.?[0-9]+)")
-
-
-def parse_gcode(text):
-    """Blocks of posted G-code as (codes, words) with comments removed."""
-    blocks = []
-    for line in text.splitlines():
-        line = re.sub(r"\(.*?\)", "", line).split(";")[0].strip().upper()
-        if not line:
-            continue
-        words = {}
-        codes = []
-        for letter, value in WORD.findall(line):
-            if letter in "GM":
-                codes.append(letter + str(int(float(value))))
-            else:
-                words[letter] = float(value)
-        blocks.append((codes, words))
-    return blocks
+# The G-code checker's reader (tests/python/machine_check.py): blocks of posted
+# G-code as (codes, words) with comments removed.
+from machine_check import parse as parse_gcode  # noqa: E402,F401
 
 
 def replay(blocks, safe_z):

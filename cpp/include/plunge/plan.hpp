@@ -154,6 +154,8 @@ struct Plan {
 
 // The cutter shape of a tool (depth.hpp).
 Cutter cutterOf(const Tool& tool);
+// A plunge of the tool at c stopping at z.
+Plunge plungeOf(const Tool& tool, Vec2 c, double z);
 
 // Checks every number and option of the input; throws plunge::Error naming the problem.
 void validate(PlanInput& input);
