@@ -1,6 +1,7 @@
 #!/bin/sh
 # Installs what PlungeRough needs from Debian 12 or 13 (only what is missing) and builds it.
 # Idempotent: run it as often as you like; both README commands start with it.
+# --packages-only: install, do not build (tests/fuzz/run.sh builds its own).
 set -eu
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 
@@ -22,6 +23,7 @@ if [ -n "$missing" ]; then
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive DEBCONF_NOWARNINGS=yes $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
 fi
+[ "${1:-}" = --packages-only ] && exit 0
 
 cmake -S "$ROOT" -B "$ROOT/build" -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=/usr/bin/python3 \
   -DPLUNGE_WERROR="${PLUNGE_WERROR:-OFF}" >/dev/null

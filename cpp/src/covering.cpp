@@ -11,6 +11,7 @@
 #include <map>
 #include <numeric>
 #include <queue>
+#include <unordered_map>
 
 #include "clip.hpp"
 #include "plunge/error.hpp"
@@ -30,6 +31,9 @@ constexpr double kDiskChord = 0.005;
 constexpr double kTol = 1e-9;
 constexpr double kCoreOutlineTolerance = 0.01;  // mm, see coreRegion
 constexpr double kBandMargin = 0.05;             // mm, see Coverer::run
+// Corner placements pair the walls nearest a point, at most this many: with a
+// tool as large as the pocket every wall is "in reach" and all pairs would take minutes.
+constexpr size_t kCornerWalls = 64;
 
 using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
 using BBox = bg::model::box<BPoint>;
@@ -233,6 +237,15 @@ class Coverer {
     std::stable_sort(sorted_.begin(), sorted_.end(), [&](int a, int b) { return radii[a] < radii[b]; });
     rMin_ = radii[sorted_.front()];
     rMax_ = radii[sorted_.back()];
+    // Where each tool's centres may go, as a box: corner placements are only
+    // looked for within a radius of it (a tool nearly as large as the pocket
+    // reaches a small part of it; the others reach everywhere).
+    for (double r : radii) {
+      Vec2 lo{1, 1}, hi{0, 0};  // empty
+      const clip::Paths centres = clip::toPaths(accessibleRegion(region_, r, opt_.allowance));
+      if (!centres.empty()) clip::bounds(centres, lo, hi);
+      centreBoxes_.push_back({lo, hi});
+    }
     // With a band the core is covered whole: only slivers of the polygon
     // approximation (under 0.01 mm^2 measured) may stay.
     core_ = opt.wallStock > 0.0;
@@ -467,7 +480,7 @@ class Coverer {
       x = w + away * (c + 1e-7);
     }
     // Still squeezed between walls: try the corner placements of the walls in reach.
-    const std::vector<int> near = region_.wallsNear(x, c);
+    const std::vector<int> near = region_.nearestWallsNear(x, c, kCornerWalls);
     double best = std::numeric_limits<double>::infinity();
     for (size_t i = 0; i < near.size(); ++i)
       for (size_t j = i + 1; j < near.size(); ++j)
@@ -578,15 +591,21 @@ class Coverer {
         if (feasibleNear(a, radii_[t], c)) centres.push_back(c);
         // A small piece of the core in a corner the tool only just reaches: the
         // corner placements themselves (the push off one wall lands beside them).
-        if (core_ && p.area < radii_[t] * radii_[t]) cornerPlacementsNear(a, radii_[t], centres);
+        if (core_ && p.area < radii_[t] * radii_[t] && reaches(t, a)) cornerPlacementsNear(a, radii_[t], centres);
         for (const Vec2& x : centres) queueCandidate(x, t, id);
       }
   }
 
+  bool reaches(int t, Vec2 a) const {
+    const auto& [lo, hi] = centreBoxes_[t];
+    const double r = radii_[t] + 1e-6;
+    return a.x >= lo.x - r && a.x <= hi.x + r && a.y >= lo.y - r && a.y <= hi.y + r;
+  }
+
   void cornerPlacementsNear(Vec2 a, double r, std::vector<Vec2>& out) const {
     const double c = r + opt_.allowance;
-    const std::vector<int> near = region_.wallsNear(a, c + r);
-    const std::vector<int> reflex = region_.reflexVerticesNear(a, c + r);
+    const std::vector<int> near = region_.nearestWallsNear(a, c + r, kCornerWalls);
+    const std::vector<int> reflex = region_.nearestReflexVerticesNear(a, c + r, kCornerWalls);
     std::vector<Vec2> pts;
     for (size_t i = 0; i < near.size(); ++i) {
       const Segment& w = region_.walls()[near[i]];
@@ -601,8 +620,26 @@ class Coverer {
                                                           {region_.vertices()[reflex[j]].p, c}))
           pts.push_back(p);
     for (const Vec2& p : pts)
-      if (dist(p, a) <= r && region_.diskFits(p, c)) out.push_back(p);
+      if (dist(p, a) <= r && fits(p, c)) out.push_back(p);
   }
+
+  // region_.diskFits, remembered: neighbouring anchors meet the same corner
+  // placements again (every one of them, for a tool nearly as large as the pocket).
+  bool fits(Vec2 p, double c) const {
+    auto [it, fresh] = fitsMemo_.try_emplace({p.x, p.y, c}, false);
+    if (fresh) it->second = region_.diskFits(p, c);
+    return it->second;
+  }
+  struct Placement {
+    double x, y, c;
+    bool operator==(const Placement& o) const { return x == o.x && y == o.y && c == o.c; }
+  };
+  struct PlacementHash {
+    size_t operator()(const Placement& p) const {
+      const std::hash<double> h;
+      return h(p.x) * 0x9E3779B97F4A7C15ULL ^ h(p.y) * 0xC2B2AE3D27D4EB4FULL ^ h(p.c);
+    }
+  };
 
   // Lazy greedy: queue an upper bound of the gain, evaluated when it comes up.
   void queueCandidate(Vec2 c, int t, int id) {
@@ -646,6 +683,8 @@ class Coverer {
   std::vector<double> radii_;
   CoveringOptions opt_;
   std::vector<int> sorted_;  // tool indices by increasing radius
+  std::vector<std::pair<Vec2, Vec2>> centreBoxes_;  // per tool: bounds of its feasible centres
+  mutable std::unordered_map<Placement, bool, PlacementHash> fitsMemo_;
   double rMin_ = 0, rMax_ = 0, crumb_ = 0;
   bool core_ = false;  // a wall band: cover the core whole (CoveringOptions::wallStock)
   clip::Paths accessible_;

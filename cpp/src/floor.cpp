@@ -17,6 +17,7 @@
 #include <TopoDS_Shape.hxx>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -259,6 +260,8 @@ std::unique_ptr<FloorSurface> brepFrom(std::istream& in, const std::string& what
   return std::make_unique<BrepFloor>(shape);
 }
 
+constexpr std::uintmax_t kMaxBrepBytes = 1ULL << 30;
+
 }  // namespace
 
 std::unique_ptr<FloorSurface> makeFlatFloor(double z) { return std::make_unique<FlatFloor>(z); }
@@ -268,6 +271,12 @@ std::unique_ptr<FloorSurface> makeExpressionFloor(const std::string& expression)
 }
 
 std::unique_ptr<FloorSurface> makeBrepFloor(const std::string& path) {
+  // A regular file of a sane size: not a device or pipe that never ends.
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw Error("floor.brep: cannot read " + path + ": no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) throw Error("floor.brep: " + path + " is not a file");
+  if (std::filesystem::file_size(path, ec) > kMaxBrepBytes)
+    throw Error("floor.brep: " + path + " is larger than 1 GB");
   std::ifstream in(path);
   if (!in) throw Error("floor.brep: cannot read " + path);
   return brepFrom(in, path);

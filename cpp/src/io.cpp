@@ -119,7 +119,7 @@ PlanInput planInputFromJson(const std::string& text) {
            {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",
             "min_coverage", "contact_ratio", "packing_order", "sequencing", "start", "tool_library", "selection",
             "time_model", "grid", "max_wall_stock", "max_floor_stock", "lead_out", "stock_aware_heights",
-            "rapid_clearance"},
+            "rapid_clearance", "max_plunges"},
            "input: ");
   PlanInput in;
   if (j.contains("version") && !(j["version"].is_number_integer() && j["version"].get<long long>() == 1))
@@ -180,6 +180,7 @@ PlanInput planInputFromJson(const std::string& text) {
   if (j.contains("max_floor_stock")) in.maxFloorStock = number(j["max_floor_stock"], "max_floor_stock");
   if (j.contains("lead_out")) in.leadOut = number(j["lead_out"], "lead_out");
   if (j.contains("rapid_clearance")) in.rapidClearance = number(j["rapid_clearance"], "rapid_clearance");
+  if (j.contains("max_plunges")) in.maxPlunges = number(j["max_plunges"], "max_plunges");
   if (j.contains("stock_aware_heights")) {
     if (!j["stock_aware_heights"].is_boolean()) throw Error("stock_aware_heights: expected true or false");
     in.stockAwareHeights = j["stock_aware_heights"].get<bool>();
@@ -264,7 +265,8 @@ std::string planToJson(const Plan& plan) {
                   {"over_engaged", s.overEngaged},
                   {"thin_cuts", s.thinCuts},
                   {"levels", s.levels},
-                  {"minutes_at_safe_height", s.minutesAtSafeHeight}};
+                  {"minutes_at_safe_height", s.minutesAtSafeHeight},
+                  {"boundary_tolerance", s.boundaryTolerance}};
   if (!plan.warnings.empty()) out["warnings"] = plan.warnings;
   if (plan.selection) {
     const ToolSelection& sel = *plan.selection;

@@ -69,7 +69,7 @@ class Touched {
       }
     // Long moves over many disks go over the top of the stock: cheaper than the
     // exact test, and never lower than the truth.
-    if (near.empty() || near.size() > 150) return top_;
+    if (near.empty() || near.size() > 150 || uncoveredWitness(a, b, r - 0.01, near)) return top_;
     const double rs = r - 0.01;
     Polygons swept{poly::disk({a, rs})};
     if (dist(a, b) > 1e-9) {
@@ -81,6 +81,31 @@ class Touched {
   }
 
  private:
+  // A point of the swept disk (radius rs) at least kWitness inside it and
+  // kWitness outside every near disk proves an uncovered piece of pi kWitness^2
+  // (more than the polygon test's 1e-4 mm^2): the common case (a move over
+  // uncut gaps, a plunge into fresh stock), found without polygon booleans.
+  static constexpr double kWitness = 0.01;
+  static bool uncoveredWitness(Vec2 a, Vec2 b, double rs, const std::vector<Circle>& near) {
+    auto uncovered = [&](Vec2 q) {
+      for (const Circle& d : near)
+        if (dist(q, d.c) < d.r + kWitness) return false;
+      return true;
+    };
+    const double inner = rs - kWitness;
+    if (inner <= 0.0) return false;
+    const int along = std::min(64, 1 + static_cast<int>(std::ceil(dist(a, b) / (0.5 * inner))));
+    for (int s = 0; s <= along; ++s) {
+      const Vec2 q = a + (b - a) * (static_cast<double>(s) / along);
+      if (uncovered(q)) return true;
+      for (int k = 0; k < 24; ++k) {
+        const double t = 2 * M_PI * k / 24;
+        for (double f : {0.5, 1.0})
+          if (uncovered(q + Vec2{std::cos(t), std::sin(t)} * (f * inner))) return true;
+      }
+    }
+    return false;
+  }
   struct Disk {
     Circle circle;
     double bottom;
@@ -140,37 +165,45 @@ std::vector<Plunge> splitIntoLevels(const PlanInput& in, const std::vector<Plung
 
 namespace {
 
-// The lead-out end of a plunge just made (stock already cut by it), or none.
+// The lead-out end of a plunge just made (stock already cut by it), or none:
+// of the 16 directions that neither cut material nor gouge, the one ending
+// farthest from the walls (the first such in angle order). Tried from the most
+// room down, cheap tests first, so the exact stock test runs on few of them.
 std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const DepthSolver& depths,
                               const HeightField& stock, const Touched& touched, const Plunge& p,
                               const Cutter& cutter) {
   const Vec2 c{p.x, p.y};
-  std::optional<Vec2> best;
-  double bestRoom = -1.0;
-  const int samples = std::max(2, static_cast<int>(std::ceil(in.leadOut / (0.25 * cutter.radius))));
+  struct End {
+    Vec2 at;
+    double room;
+  };
+  std::vector<End> ends;
   for (int d = 0; d < 16; ++d) {
     const double a = 2 * M_PI * d / 16;
     const Vec2 end = c + Vec2{std::cos(a), std::sin(a)} * in.leadOut;
-    // Into uncut material (cells touching the moved disk: the crescent it adds is
-    // narrower than a cell).
-    if (stock.materialCells(end, cutter, p.z, 0.71 * stock.spacing()) > 0 ||
-        touched.highestAlong(c, end, cutter.radius) > p.z + cutterProfile(cutter, cutter.radius) + kEngagementSkin)
-      continue;
-    bool ok = true;
-    for (int s = 1; s <= samples && ok; ++s) {
-      const Vec2 q = c + (end - c) * (static_cast<double>(s) / samples);
-      // No gouge: walls and islands, and the floor under the moving tool.
-      ok = region.diskFits(q, cutter.radius + in.radialAllowance) &&
-           depths.stopHeight(q, cutter) + in.floorAllowance <= p.z + 1e-6;
-    }
-    if (!ok) continue;
-    const double room = region.wallDistance(end, 4 * cutter.radius);
-    if (room > bestRoom + 1e-9) {
-      bestRoom = room;
-      best = end;
-    }
+    ends.push_back({end, region.wallDistance(end, 4 * cutter.radius)});
   }
-  return best;
+  std::stable_sort(ends.begin(), ends.end(), [](const End& a, const End& b) { return a.room > b.room + 1e-9; });
+  const int samples = std::max(2, static_cast<int>(std::ceil(in.leadOut / (0.25 * cutter.radius))));
+  auto noGouge = [&](Vec2 end) {
+    for (int s = 1; s <= samples; ++s) {
+      const Vec2 q = c + (end - c) * (static_cast<double>(s) / samples);
+      // Walls and islands, and the floor under the moving tool.
+      if (!region.diskFits(q, cutter.radius + in.radialAllowance) ||
+          depths.stopHeight(q, cutter) + in.floorAllowance > p.z + 1e-6)
+        return false;
+    }
+    return true;
+  };
+  for (const End& e : ends) {
+    // Into uncut material (cells touching the moved disk: the crescent it adds
+    // is narrower than a cell), then the exact test of the stock left.
+    if (stock.materialCells(e.at, cutter, p.z, 0.71 * stock.spacing()) > 0 || !noGouge(e.at) ||
+        touched.highestAlong(c, e.at, cutter.radius) > p.z + cutterProfile(cutter, cutter.radius) + kEngagementSkin)
+      continue;
+    return e.at;
+  }
+  return std::nullopt;
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "plunge/depth.hpp"
 #include "plunge/engagement.hpp"
 #include "plunge/heightfield.hpp"
+#include "plunge/limits.hpp"
 #include "plunge/motion.hpp"
 #include "plunge/error.hpp"
 #include "plunge/floor.hpp"
@@ -130,6 +131,8 @@ void validate(PlanInput& in) {
     requireFinite(in.start->x, "start.x");
     requireFinite(in.start->y, "start.y");
   }
+  requireFinite(in.maxPlunges, "max_plunges");
+  checkScale(in);
 }
 
 Cutter cutterOf(const Tool& t) {
@@ -168,8 +171,22 @@ bool isSculptured(const PlanInput& in, const FloorSurface& floor) {
 }
 
 // Packing and covering, or the grid: the plunge positions of every tool.
+// See placePlunges: a piece left by the packing larger than this many disks of
+// the next tool means packing that one instead (the test shapes leave at most
+// 61; a 150 mm plunger in the 600 x 400 mm benchmark 706, a 100 mm one 140).
+constexpr double kGreedyPiece = 200.0;
+
+double largestPieceLeft(const Polygons& accessible, const std::vector<PackedDisk>& packed) {
+  std::vector<Circle> disks;
+  for (const PackedDisk& d : packed) disks.push_back({d.center, d.radius});
+  double largest = 0.0;
+  for (const Polygons& piece : poly::components(poly::subtract(accessible, poly::unionOfDisks(disks, 0.05))))
+    largest = std::max(largest, poly::area(piece));
+  return largest;
+}
+
 CoverResult placePlunges(const PlanInput& in, const Region& region, const std::vector<double>& radii,
-                         const Progress& progress) {
+                         const Polygons& accessible, const Progress& progress) {
   if (in.strategy == "grid") {
     GridOptions go;
     go.pattern = gridPatternFromName(in.gridPattern);
@@ -192,12 +209,21 @@ CoverResult placePlunges(const PlanInput& in, const Region& region, const std::v
     co.minCoverage = in.minCoverage;
     co.wallStock = in.maxWallStock;
     co.progress = progress;
+    if (in.maxWallStock <= 0.0) return coverRegion(region, radii, packMaxHoleDegree(region, radii, po), co);
     // With a wall band, only the largest tool is packed: the covering then uses a
-    // smaller plunger only where the larger ones cannot reach the core.
-    return coverRegion(region, radii,
-                       in.maxWallStock > 0.0 ? packWithWallBand(region, radii.front(), po)
-                                             : packMaxHoleDegree(region, radii, po),
-                       co);
+    // smaller plunger only where the larger ones cannot reach the core. Unless
+    // the largest leaves a piece wider than kGreedyPiece disks of the next (a
+    // tool nearly as large as the pocket): then the next is packed instead, or
+    // the covering would place thousands of plunges one greedy step at a time.
+    std::vector<PackedDisk> packed;
+    for (size_t k = 0; k < radii.size(); ++k) {
+      packed = packWithWallBand(region, radii[k], po);
+      for (PackedDisk& d : packed) d.tool = static_cast<int>(k);
+      if (k + 1 == radii.size() ||
+          largestPieceLeft(accessible, packed) <= kGreedyPiece * M_PI * radii[k + 1] * radii[k + 1])
+        break;
+    }
+    return coverRegion(region, radii, packed, co);
   };
   if (in.packingOrder == "hole_degree") return packAndCover(PackingOrder::HoleDegree);
   if (in.packingOrder == "lattice") return packAndCover(PackingOrder::Lattice);
@@ -391,13 +417,23 @@ Plan plan(PlanInput in, const Progress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   progress.stage(0.0, "checking the pocket");
   validate(in);
-  const Region region(in.boundary, in.islands);
+  const Region full(in.boundary, in.islands);
+  // Boundaries of many thousand vertices plan on walls simplified within a few
+  // um, that tolerance added to the radial allowance (region.hpp).
+  double tolerance = 0.0;
+  const std::optional<Region> coarse =
+      simplifiedRegion(full, kPlanningVertices, kMaxBoundaryTolerance, tolerance);
+  const Region& region = coarse ? *coarse : full;
+  in.radialAllowance += tolerance;
+  const std::string dropped = dropToolsThatDoNotFit(in, region);
 
   std::vector<double> radii;
   for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
   const double rMin = radii.back();
 
   Plan out;
+  if (!dropped.empty()) out.warnings.push_back(dropped);
+  out.stats.boundaryTolerance = tolerance;
   out.accessible = accessibleRegion(region, rMin, in.radialAllowance);
   if (poly::area(out.accessible) <= 0.0) {
     throw Error("no tool fits in the pocket: the smallest tool (diameter " + std::to_string(2 * rMin) +
@@ -419,7 +455,7 @@ Plan plan(PlanInput in, const Progress& progress) {
   const std::unique_ptr<FloorSurface> floor = makeFloor(in);
 
   progress.stage(0.05, "packing and covering");
-  const CoverResult cover = placePlunges(in, region, radii, progress);
+  const CoverResult cover = placePlunges(in, region, radii, out.accessible, progress);
   out.stats.regionArea = poly::area(allowedRegion(region, in.radialAllowance));
 
   progress.stage(0.75, "plunge depths");

@@ -1,5 +1,6 @@
 #include "plunge/region.hpp"
 
+#include <algorithm>
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
 #include <cmath>
@@ -17,6 +18,9 @@ using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
 using BBox = bg::model::box<BPoint>;
 using BoxValue = std::pair<BBox, int>;
 using PointValue = std::pair<BPoint, int>;
+
+// Distances asked about up to this (mm) query the walls in a box of that size.
+constexpr double kBoxReach = 50.0;
 
 struct Region::Index {
   bgi::rtree<BoxValue, bgi::rstar<16>> walls;
@@ -182,8 +186,24 @@ bool Region::contains(Vec2 p) const {
 }
 
 double Region::wallDistance(Vec2 p, double within) const {
-  const BBox q(BPoint(p.x - within, p.y - within), BPoint(p.x + within, p.y + within));
   double best = std::numeric_limits<double>::infinity();
+  if (within > kBoxReach) {
+    // Far reach (a tool as large as the pocket), where the box below would meet
+    // every wall: the 16 walls with the nearest boxes (a box's distance is a
+    // lower bound of its wall's). Enough when the 16th box lies beyond the
+    // nearest wall found; else the box query.
+    const BPoint q(p.x, p.y);
+    const unsigned k = 16;
+    unsigned seen = 0;
+    double lastLower = 0.0;
+    for (auto it = index_->walls.qbegin(bgi::nearest(q, k)); it != index_->walls.qend(); ++it, ++seen) {
+      lastLower = std::max(lastLower, bg::distance(q, it->first));
+      best = std::min(best, distanceToSegment(walls_[it->second], p));
+    }
+    if (seen < k || lastLower > best) return best;
+    best = std::numeric_limits<double>::infinity();
+  }
+  const BBox q(BPoint(p.x - within, p.y - within), BPoint(p.x + within, p.y + within));
   for (auto it = index_->walls.qbegin(bgi::intersects(q)); it != index_->walls.qend(); ++it)
     best = std::min(best, distanceToSegment(walls_[it->second], p));
   return best;
@@ -212,6 +232,32 @@ std::vector<int> Region::wallsNear(Vec2 p, double radius) const {
   return wallsInBox({p.x - radius, p.y - radius}, {p.x + radius, p.y + radius});
 }
 
+namespace {
+
+// The k of `items` nearest to p by `distance`, in their first order.
+template <class Distance>
+std::vector<int> keepNearest(std::vector<int> items, size_t k, Distance distance) {
+  if (items.size() <= k) return items;
+  std::vector<std::pair<double, int>> byDistance;
+  for (int i : items) byDistance.emplace_back(distance(i), i);
+  std::nth_element(byDistance.begin(), byDistance.begin() + static_cast<long>(k), byDistance.end());
+  byDistance.resize(k);
+  std::sort(byDistance.begin(), byDistance.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  items.clear();
+  for (const auto& d : byDistance) items.push_back(d.second);
+  return items;
+}
+
+}  // namespace
+
+std::vector<int> Region::nearestWallsNear(Vec2 p, double radius, size_t k) const {
+  return keepNearest(wallsNear(p, radius), k, [&](int w) { return distanceToSegment(walls_[w], p); });
+}
+
+std::vector<int> Region::nearestReflexVerticesNear(Vec2 p, double radius, size_t k) const {
+  return keepNearest(reflexVerticesNear(p, radius), k, [&](int v) { return dist(vertices_[v].p, p); });
+}
+
 std::vector<int> Region::wallsInBox(Vec2 lo, Vec2 hi) const {
   std::vector<int> out;
   const BBox q(BPoint(lo.x, lo.y), BPoint(hi.x, hi.y));
@@ -226,6 +272,38 @@ std::vector<int> Region::reflexVerticesNear(Vec2 p, double radius) const {
   for (auto it = index_->reflex.qbegin(bgi::intersects(q)); it != index_->reflex.qend(); ++it)
     out.push_back(it->second);
   return out;
+}
+
+std::optional<Region> simplifiedRegion(const Region& region, size_t maxVertices, double maxTolerance,
+                                       double& tolerance) {
+  tolerance = 0.0;
+  if (region.vertices().size() <= maxVertices) return std::nullopt;
+  using Line = bg::model::linestring<BPoint>;
+  for (double t = 1e-3; t <= maxTolerance * (1 + 1e-9); t *= 2) {
+    std::vector<Loop> loops;
+    size_t count = 0;
+    for (const Loop& loop : region.loops()) {
+      // Open at the first vertex (kept, as both ends of a line are).
+      Line line, out;
+      for (const Vec2& p : loop) line.emplace_back(p.x, p.y);
+      line.emplace_back(loop.front().x, loop.front().y);
+      bg::simplify(line, out, t);
+      Loop l;
+      for (size_t k = 0; k + 1 < out.size(); ++k) l.push_back({bg::get<0>(out[k]), bg::get<1>(out[k])});
+      if (l.size() < 3) l = loop;  // a loop smaller than the tolerance stays as it is
+      count += l.size();
+      loops.push_back(std::move(l));
+    }
+    if (count > maxVertices && t * 2 <= maxTolerance * (1 + 1e-9)) continue;
+    try {
+      Region out(loops.front(), std::vector<Loop>(loops.begin() + 1, loops.end()));
+      tolerance = t;
+      return out;
+    } catch (const Error&) {
+      return std::nullopt;  // walls simplified into each other: plan on the original ones
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace plunge

@@ -9,6 +9,7 @@
 
 #include "plunge/covering.hpp"
 #include "plunge/error.hpp"
+#include "plunge/limits.hpp"
 #include "plunge/plan.hpp"
 #include "plunge/polygon.hpp"
 
@@ -57,7 +58,10 @@ Plan planWithToolSelection(const PlanInput& input, const Progress& progress) {
   in.tools = in.library;
   validate(in);  // the library, largest first, and every other field
   const std::vector<Tool> library = in.tools;
-  const Region region(in.boundary, in.islands);
+  const Region full(in.boundary, in.islands);
+  double tolerance = 0.0;  // large boundaries: the medial axis of simplified walls (limits.hpp)
+  const std::optional<Region> coarse = simplifiedRegion(full, kPlanningVertices, kMaxBoundaryTolerance, tolerance);
+  const Region& region = coarse ? *coarse : full;
 
   ToolSelection sel;
   const MedialAxis axis = medialAxis(region);

@@ -172,8 +172,10 @@ TEST(Plan, BandWiderThanThePocketIsAnError) {
   PlanInput in = square();
   in.maxWallStock = 45;  // the square is 80 mm wide
   EXPECT_NE(planError(in).find("max_wall_stock"), std::string::npos);
-  in.maxWallStock = 1e308;  // beyond any polygon offset
+  in.maxWallStock = 1e5;  // wider than the pocket, within the limits
   EXPECT_NE(planError(in).find("is the whole pocket"), std::string::npos);
+  in.maxWallStock = 1e308;  // beyond any polygon offset: a length no machine has (limits.hpp)
+  EXPECT_NE(planError(in).find("max_wall_stock 1.000e+308 mm is beyond"), std::string::npos);
   in.maxWallStock = -1;
   EXPECT_NE(planError(in).find("max_wall_stock must be >= 0"), std::string::npos);
   in.maxWallStock = 1;

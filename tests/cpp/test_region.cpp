@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "plunge/error.hpp"
@@ -66,6 +67,22 @@ TEST(Region, QueriesMatchBruteForce) {
     else
       EXPECT_GT(got, within);
     EXPECT_EQ(r.diskFits(p, 5), test::bruteInside(all, p) && d >= 5 - 1e-9);
+    // Far reach (a tool as large as the pocket): the nearest-box search.
+    const double far = r.wallDistance(p, 500);
+    EXPECT_NEAR(far, d, 1e-12);
+    EXPECT_EQ(r.diskFits(p, 60), test::bruteInside(all, p) && d >= 60 - 1e-9);
+    // The k nearest walls in reach: no wall left out is nearer than one kept.
+    const std::vector<int> box = r.wallsNear(p, 30), near = r.nearestWallsNear(p, 30, 8);
+    ASSERT_EQ(near.size(), std::min<size_t>(8, box.size()));
+    double keptFarthest = 0.0, leftNearest = INFINITY;
+    for (int w : box) {
+      const double dw = distanceToSegment(r.walls()[w], p);
+      if (std::find(near.begin(), near.end(), w) != near.end())
+        keptFarthest = std::max(keptFarthest, dw);
+      else
+        leftNearest = std::min(leftNearest, dw);
+    }
+    EXPECT_LE(keptFarthest, leftNearest);
   }
 }
 

@@ -146,3 +146,46 @@ def test_missing_file_and_bad_usage(cli, tmp_path):
     assert res.returncode != 0 and len(res.stderr.strip().splitlines()) == 1
     res = subprocess.run([cli, "plan", "a.json", "--frobnicate"], capture_output=True, text=True)
     assert res.returncode != 0 and len(res.stderr.strip().splitlines()) == 1
+
+
+def hostile(name, change):
+    data = load(name)
+    change(data)
+    return data
+
+
+def _add_tool(diameter):
+    return lambda d: d["tools"].append({"diameter": diameter, "id": 9})
+
+
+def _wild_vertex(d):
+    d["boundary"][1] = [1e9, d["boundary"][1][1]]
+
+
+# The inputs that ran past 30 s (up to 3.9 GB) in a fuzzing run, and their like:
+# each now answers at once with one line naming the likely cause.
+@pytest.mark.parametrize("change,message", [
+    (_add_tool(1e-300), "is the diameter in mm?"),
+    (_add_tool(0.001), "is the diameter in mm?"),
+    (_add_tool(0.01), "is the diameter in mm?"),
+    (_add_tool(1e9), "larger than any milling tool"),
+    (_wild_vertex, "any machine travels: is it in mm?"),
+    (lambda d: d.update(top_z=-1e12, safe_z=1e12), "top_z"),
+    (lambda d: d.update(max_plunges=100), "more than max_plunges (100)"),
+])
+def test_absurd_scales_are_refused(cli, tmp_path, change, message):
+    res = run(cli, hostile("benchmark", change), tmp_path, "-o", str(tmp_path / "p.json"))
+    assert res.returncode == 2, res.stderr
+    lines = res.stderr.splitlines()
+    assert len(lines) == 1 and message in lines[0], lines
+    assert not (tmp_path / "p.json").exists()
+
+
+def test_tool_too_large_is_left_out(cli, tmp_path):
+    out = tmp_path / "p.json"
+    res = run(cli, hostile("convex", _add_tool(400)), tmp_path, "-o", str(out))
+    assert res.returncode == 0, res.stderr
+    plan = json.loads(out.read_text())
+    assert any("T9 (400 mm)" in w for w in plan["warnings"]), plan.get("warnings")
+    assert all(p["tool_id"] != 9 for p in plan["plunges"])
+    assert_no_gouge(load("convex"), plan)

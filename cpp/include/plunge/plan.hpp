@@ -75,6 +75,8 @@ struct PlanInput {
   double leadOut = 0.5;
   bool stockAwareHeights = true;
   double rapidClearance = 1.0;
+  // "max_plunges": refuse inputs estimated to need more (limits.hpp).
+  double maxPlunges = 200000;
 };
 
 struct Plunge {
@@ -129,6 +131,7 @@ struct PlanStats {
   int thinCuts = 0;             // plunges cutting narrower than their tool's min_engagement
   int levels = 1;               // most levels any tool needs for its flute length
   double minutesAtSafeHeight = 0.0;  // the time model with every move at safe_z
+  double boundaryTolerance = 0.0;  // mm the walls were simplified by (limits.hpp), added to the radial allowance
 };
 
 // The floor stock left, sampled on a raster (for the plan's picture).

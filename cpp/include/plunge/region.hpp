@@ -5,6 +5,7 @@
 // both accelerated by a Boost.Geometry R-tree of the wall segments.
 #pragma once
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "plunge/geometry.hpp"
@@ -51,6 +52,11 @@ class Region {
   bool diskFits(Vec2 c, double clearance, double tol = 1e-9) const;
   // Walls whose bounding box meets the square of half-size `radius` around p.
   std::vector<int> wallsNear(Vec2 p, double radius) const;
+  // wallsNear, but at most the k nearest to p: pairs of walls in reach stay few
+  // when a tool is as large as the pocket (or the walls very fine).
+  std::vector<int> nearestWallsNear(Vec2 p, double radius, size_t k) const;
+  // reflexVerticesNear, but at most the k nearest to p.
+  std::vector<int> nearestReflexVerticesNear(Vec2 p, double radius, size_t k) const;
   // Walls whose bounding box meets the box [lo, hi].
   std::vector<int> wallsInBox(Vec2 lo, Vec2 hi) const;
   // Reflex vertices whose position lies in the square of half-size radius around p.
@@ -69,5 +75,16 @@ class Region {
   Vec2 lo_, hi_;
   std::unique_ptr<Index> index_;
 };
+
+// Large boundaries (fine chordal tolerances give tens of thousands of
+// vertices): the region with its loops simplified (Douglas-Peucker, Boost.Geometry)
+// within the smallest tolerance of 1, 2, 4 ... um up to maxTolerance mm that
+// leaves at most maxVertices vertices. Every simplified wall lies within
+// `tolerance` of the original walls and back, so a plan on it whose radial
+// allowance is raised by `tolerance` keeps the asked allowance to the real
+// walls. None (tolerance 0) when the region is small enough, or when no
+// simplification is both small enough and still a valid region.
+std::optional<Region> simplifiedRegion(const Region& region, size_t maxVertices, double maxTolerance,
+                                       double& tolerance);
 
 }  // namespace plunge

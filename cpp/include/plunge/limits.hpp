@@ -1,0 +1,40 @@
+// What the planner refuses or simplifies before planning, so that no input
+// makes it run for more than about a minute or take more than a few GB on a
+// small machine (2 cores): work it cannot finish, and scales no machine has.
+// Every refusal names the likely cause, usually a unit slip. Documented in
+// docs/plan-format.md, "Limits".
+#pragma once
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "plunge/plan.hpp"
+
+namespace plunge {
+
+// Any length (coordinate, height, allowance, lead-out ...): 100 m, more than
+// any machine travels.
+constexpr double kMaxLength = 1e5;
+// A milling tool's diameter, mm.
+constexpr double kMaxToolDiameter = 1000.0;
+// Boundary and island vertices together.
+constexpr size_t kMaxVertices = 1000000;
+// Boundaries with more vertices plan on walls simplified within at most
+// kMaxBoundaryTolerance mm, added to the radial allowance (region.hpp).
+constexpr size_t kPlanningVertices = 4000;
+constexpr double kMaxBoundaryTolerance = 0.05;
+
+// Plunges the pocket needs at most: its area over the smallest tool's disk
+// (packing and covering place fewer, since larger tools go first).
+double estimatedPlunges(const PlanInput& in);
+
+// Throws plunge::Error for input beyond the limits above or estimated above
+// in.maxPlunges. Needs validated input (tools sorted, numbers finite).
+void checkScale(const PlanInput& in);
+
+// Removes the tools that fit nowhere in the pocket (region.hpp's accessible
+// region is empty) and returns a warning naming them (empty if none). The
+// smallest tool is kept: plan() reports a pocket that no tool fits.
+std::string dropToolsThatDoNotFit(PlanInput& in, const Region& region);
+
+}  // namespace plunge

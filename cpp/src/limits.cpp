@@ -1,0 +1,111 @@
+#include "plunge/limits.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "plunge/covering.hpp"
+#include "plunge/error.hpp"
+#include "plunge/polygon.hpp"
+
+namespace plunge {
+
+namespace {
+
+std::string mm(double v) {
+  std::ostringstream s;
+  s.precision(v >= 1e5 || (v > 0 && v < 1e-3) ? 3 : 6);
+  if (v >= 1e5 || (v > 0 && v < 1e-3)) s << std::scientific;
+  s << v;
+  return s.str();
+}
+
+void requireLength(double v, const std::string& what) {
+  if (std::fabs(v) > kMaxLength)
+    throw Error(what + " " + mm(v) + " mm is beyond the " + mm(kMaxLength) +
+                " mm (100 m) any machine travels: is it in mm?");
+}
+
+double pocketArea(const PlanInput& in) {
+  double a = std::fabs(signedArea(in.boundary));
+  for (const Loop& l : in.islands) a -= std::fabs(signedArea(l));
+  return std::max(a, 0.0);
+}
+
+}  // namespace
+
+double estimatedPlunges(const PlanInput& in) {
+  const double r = 0.5 * in.tools.back().diameter;
+  return pocketArea(in) / (M_PI * r * r);
+}
+
+void checkScale(const PlanInput& in) {
+  size_t vertices = in.boundary.size();
+  for (const Loop& l : in.islands) vertices += l.size();
+  if (vertices > kMaxVertices)
+    throw Error("boundary and islands have " + std::to_string(vertices) + " vertices, more than " +
+                std::to_string(kMaxVertices) + ": export the face with a coarser tolerance");
+  for (const Vec2& p : in.boundary) {
+    requireLength(p.x, "boundary: coordinate");
+    requireLength(p.y, "boundary: coordinate");
+  }
+  for (size_t i = 0; i < in.islands.size(); ++i)
+    for (const Vec2& p : in.islands[i]) {
+      requireLength(p.x, "island " + std::to_string(i + 1) + ": coordinate");
+      requireLength(p.y, "island " + std::to_string(i + 1) + ": coordinate");
+    }
+  requireLength(in.topZ, "top_z");
+  requireLength(in.safeZ, "safe_z");
+  if (in.floor.kind == Floor::Kind::Flat) requireLength(in.floor.z, "floor.z");
+  requireLength(in.radialAllowance, "allowance.radial");
+  requireLength(in.floorAllowance, "allowance.floor");
+  requireLength(in.maxWallStock, "max_wall_stock");
+  requireLength(in.maxFloorStock, "max_floor_stock");
+  requireLength(in.leadOut, "lead_out");
+  requireLength(in.rapidClearance, "rapid_clearance");
+  if (in.start) {
+    requireLength(in.start->x, "start.x");
+    requireLength(in.start->y, "start.y");
+  }
+  for (const Tool& t : in.tools) {
+    const std::string name = "tool " + std::to_string(t.id);
+    if (t.diameter > kMaxToolDiameter)
+      throw Error(name + ": a diameter of " + mm(t.diameter) + " mm is larger than any milling tool (" +
+                  mm(kMaxToolDiameter) + " mm at most): is it in mm?");
+    for (double v : {t.maxEngagement, t.minEngagement, t.coreDiameter, t.fluteLength, t.cornerRadius})
+      requireLength(v, name + ": a length of");
+  }
+  if (!(in.maxPlunges >= 1.0)) throw Error("max_plunges must be at least 1");
+  const double n = estimatedPlunges(in);
+  if (!(n <= in.maxPlunges)) {
+    Vec2 lo = in.boundary.front(), hi = lo;
+    for (const Vec2& p : in.boundary) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    }
+    std::ostringstream m;
+    m.precision(3);
+    m << "tool " << in.tools.back().id << " (diameter " << mm(in.tools.back().diameter) << " mm) in a "
+      << mm(hi.x - lo.x) << " x " << mm(hi.y - lo.y) << " mm pocket: about " << (std::isfinite(n) ? n : 1e308)
+      << " plunges, more than max_plunges (" << std::fixed << std::setprecision(0) << in.maxPlunges
+      << "): is the diameter in mm?";
+    throw Error(m.str());
+  }
+}
+
+std::string dropToolsThatDoNotFit(PlanInput& in, const Region& region) {
+  std::string dropped;
+  for (size_t i = 0; i + 1 < in.tools.size();) {
+    const Tool& t = in.tools[i];
+    if (poly::area(accessibleRegion(region, 0.5 * t.diameter, in.radialAllowance)) > 0.0) {
+      ++i;
+      continue;
+    }
+    dropped += (dropped.empty() ? "" : ", ") + std::string("T") + std::to_string(t.id) + " (" +
+               mm(t.diameter) + " mm)";
+    in.tools.erase(in.tools.begin() + static_cast<long>(i));
+  }
+  return dropped.empty() ? dropped : "tools too large for the pocket, not used: " + dropped;
+}
+
+}  // namespace plunge

@@ -1,0 +1,142 @@
+// limits.hpp: what is refused before planning, simplified big boundaries,
+// tools too large for the pocket. Each refusal is checked to happen (and to say
+// why); each accepted input to plan without gouging the given walls.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "plunge/error.hpp"
+#include "plunge/io.hpp"
+#include "plunge/limits.hpp"
+#include "plunge/plan.hpp"
+#include "testutil.hpp"
+
+using namespace plunge;
+
+namespace {
+
+PlanInput benchmark() { return planInputFromJson(test::readData("shapes/benchmark.json")); }
+
+std::string planError(PlanInput in) {
+  try {
+    plan(in);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// A smooth closed curve of about 600 x 400 mm with n vertices (a fine
+// chordal tolerance on a B-spline face).
+Loop freeForm(int n) {
+  Loop out;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * M_PI * i / n;
+    const double r = (1 + 0.15 * std::sin(3 * t) + 0.08 * std::cos(5 * t)) / 1.23;
+    out.push_back({300 + 290 * r * std::cos(t), 200 + 190 * r * std::sin(t)});
+  }
+  return out;
+}
+
+void expectNoGouge(const std::vector<Loop>& loops, double allowance, const Plan& p) {
+  for (const Plunge& q : p.plunges) {
+    ASSERT_TRUE(test::bruteInside(loops, {q.x, q.y}));
+    ASSERT_GE(test::bruteWallDistance(loops, {q.x, q.y}), q.diameter / 2 + allowance - 1e-6);
+  }
+}
+
+}  // namespace
+
+// The hostile inputs that ran for minutes (a fuzzing run): each is refused at once, naming the cause.
+TEST(Limits, UnitSlipsAreRefused) {
+  for (double d : {1e-300, 1e-3, 0.01}) {
+    PlanInput in = benchmark();
+    in.tools.push_back({d, 9, 100});
+    const std::string e = planError(in);
+    EXPECT_TRUE(has(e, "plunges, more than max_plunges (200000)")) << e;
+    EXPECT_TRUE(has(e, "is the diameter in mm?")) << e;
+    EXPECT_TRUE(has(e, "tool 9")) << e;
+  }
+  PlanInput in = benchmark();
+  in.tools.push_back({1e9, 9, 100});
+  EXPECT_TRUE(has(planError(in), "larger than any milling tool")) << planError(in);
+  in = benchmark();
+  in.boundary[1].x = 1e9;
+  EXPECT_TRUE(has(planError(in), "boundary: coordinate 1.000e+09 mm is beyond")) << planError(in);
+  in = benchmark();
+  in.radialAllowance = 1e308;
+  EXPECT_TRUE(has(planError(in), "allowance.radial")) << planError(in);
+  in = benchmark();
+  in.islands[0][3].y = -2e5;
+  EXPECT_TRUE(has(planError(in), "island 1: coordinate")) << planError(in);
+}
+
+TEST(Limits, EstimateAgainstMaxPlunges) {
+  PlanInput in = benchmark();  // 600 x 400 mm less four 60 mm islands, smallest tool 5 mm
+  const double area = 600.0 * 400 - 4 * M_PI * 30 * 30;
+  EXPECT_NEAR(estimatedPlunges(in), area / (M_PI * 2.5 * 2.5), 0.01 * area / (M_PI * 2.5 * 2.5));
+  in.maxPlunges = 0.9 * estimatedPlunges(in);
+  EXPECT_TRUE(has(planError(in), "more than max_plunges")) << planError(in);
+  in.maxPlunges = 0.5;
+  EXPECT_TRUE(has(planError(in), "max_plunges must be at least 1"));
+  // A 2 mm plunger fits the default (76000 plunges estimated).
+  in = benchmark();
+  in.tools.push_back({2, 9, 100});
+  EXPECT_NO_THROW(validate(in));
+}
+
+TEST(Limits, TooManyVerticesAreRefused) {
+  PlanInput in = benchmark();
+  in.islands.clear();
+  in.boundary = freeForm(static_cast<int>(kMaxVertices) + 1);
+  EXPECT_TRUE(has(planError(in), "export the face with a coarser tolerance")) << planError(in);
+}
+
+TEST(Limits, ToolsTooLargeAreLeftOutWithAWarning) {
+  PlanInput in = benchmark();
+  in.tools.push_back({700, 9, 100});
+  const Plan p = plan(in);
+  bool warned = false;
+  for (const std::string& w : p.warnings) warned |= has(w, "T9 (700 mm)");
+  EXPECT_TRUE(warned);
+  for (const Plunge& q : p.plunges) EXPECT_NE(q.toolId, 9);
+  EXPECT_GT(p.plunges.size(), 2000u);
+}
+
+// A boundary of 100k vertices: planned on simplified walls, never nearer the
+// given walls than the allowance.
+TEST(Limits, BigBoundariesPlanOnSimplifiedWalls) {
+  PlanInput in;
+  in.boundary = freeForm(100000);
+  in.tools = {{12, 1, 100}, {6, 2, 100}};
+  in.floor.z = -20;
+  in.radialAllowance = 0.5;
+  const Plan p = plan(in);
+  EXPECT_GT(p.stats.boundaryTolerance, 0.0);
+  EXPECT_LE(p.stats.boundaryTolerance, kMaxBoundaryTolerance);
+  EXPECT_GT(p.plunges.size(), 1000u);
+  expectNoGouge({in.boundary}, in.radialAllowance, p);
+  EXPECT_GE(p.stats.coreCoverage, 0.999);
+}
+
+TEST(Limits, SimplifiedRegionStaysWithinItsTolerance) {
+  std::mt19937 rng(3);
+  const Loop outer = freeForm(20000);
+  const Loop island = test::circleLoop({300, 200}, 40, 9000);
+  const Region full(outer, {island});
+  double tol = 0.0;
+  const std::optional<Region> coarse = simplifiedRegion(full, kPlanningVertices, kMaxBoundaryTolerance, tol);
+  ASSERT_TRUE(coarse);
+  EXPECT_LE(coarse->vertices().size(), kPlanningVertices);
+  EXPECT_GT(tol, 0.0);
+  // Both ways: every given vertex near the simplified walls, every simplified
+  // wall (sampled) near the given ones.
+  for (const Region::Vertex& v : full.vertices()) ASSERT_LE(coarse->wallDistance(v.p, 1.0), tol + 1e-9);
+  for (const Segment& s : coarse->walls())
+    for (double f : {0.25, 0.5, 0.75}) ASSERT_LE(full.wallDistance(s.a + (s.b - s.a) * f, 1.0), tol + 1e-9);
+  // Small regions are left as they are.
+  EXPECT_FALSE(simplifiedRegion(Region(freeForm(500), {}), kPlanningVertices, kMaxBoundaryTolerance, tol));
+  EXPECT_EQ(tol, 0.0);
+}

@@ -1,0 +1,35 @@
+#!/bin/sh
+# Sanitizers and fuzzing (CI runs this after the README's test command):
+# 1. the C++ tests and the fuzz inputs (seed corpus + regressions) built with
+#    clang, AddressSanitizer and UndefinedBehaviorSanitizer (build-sanitize/);
+# 2. libFuzzer on the JSON-to-plan path for FUZZ_SECONDS (default 240), under
+#    the same sanitizers: a crash, a sanitizer report, an exception other than
+#    plunge::Error, a gouge, a run past 120 s (about a minute without the
+#    sanitizers) or past 4 GB fails. What it finds is written to
+#    build-sanitize/fuzz-findings/: add it to tests/fuzz/regressions/.
+set -eu
+ROOT=$(cd "$(dirname "$0")/../.." && pwd)
+# The project's packages (setup.sh) and Debian's clang with its sanitizer and
+# libFuzzer runtimes.
+sh "$ROOT/resources/setup.sh" --packages-only
+missing=""
+for p in clang libclang-rt-dev; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+  apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $missing
+fi
+B="$ROOT/build-sanitize"
+cmake -S "$ROOT" -B "$B" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DPLUNGE_SANITIZE=ON -DPLUNGE_FUZZ=ON -DPLUNGE_BUILD_PYTHON=OFF -DPLUNGE_WERROR="${PLUNGE_WERROR:-OFF}" >/dev/null
+cmake --build "$B" -j"$(nproc)"
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+(cd "$B" && ctest --output-on-failure -j"$(nproc)")
+corpus="$B/fuzz-corpus"
+findings="$B/fuzz-findings"
+mkdir -p "$corpus" "$findings"
+"$B/tests/fuzz_plan" -max_total_time="${FUZZ_SECONDS:-240}" -timeout=120 -rss_limit_mb=4096 \
+  -dict="$ROOT/tests/fuzz/plan.dict" -artifact_prefix="$findings/" -print_final_stats=1 \
+  "$corpus" "$ROOT/tests/fuzz/corpus" "$ROOT/tests/fuzz/regressions"
