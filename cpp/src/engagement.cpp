@@ -124,7 +124,11 @@ class Targets {
     bool done;
     bool deferred = false;
   };
-  static long long pack(long i, long j) { return (static_cast<long long>(i) << 32) ^ (j & 0xffffffffLL); }
+  // Unsigned: shifting a negative cell index left is undefined.
+  static long long pack(long i, long j) {
+    const unsigned long long hi = static_cast<unsigned long long>(i) << 32;
+    return static_cast<long long>(hi ^ (static_cast<unsigned long long>(j) & 0xffffffffULL));
+  }
   long long key(Vec2 p) const {
     return pack(static_cast<long>(std::floor(p.x / bucket_)), static_cast<long>(std::floor(p.y / bucket_)));
   }

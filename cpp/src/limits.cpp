@@ -34,9 +34,24 @@ double pocketArea(const PlanInput& in) {
 
 }  // namespace
 
+namespace {
+
+// The largest tool with an engagement limit, which grows most of such a plan
+// (engagement.hpp), or none.
+const Tool* grownTool(const PlanInput& in) {
+  for (const Tool& t : in.tools)  // largest first
+    if (t.maxEngagement > 0.0) return &t;
+  return nullptr;
+}
+
+}  // namespace
+
 double estimatedPlunges(const PlanInput& in) {
-  const double r = 0.5 * in.tools.back().diameter;
-  return pocketArea(in) / (M_PI * r * r);
+  const double area = pocketArea(in), r = 0.5 * in.tools.back().diameter;
+  const double packed = area / (M_PI * r * r);
+  const Tool* g = grownTool(in);
+  // A grown cut: rings of the limit's width, overlapping: about r x e each.
+  return g ? std::max(packed, kGrowthCost * area / (0.5 * g->diameter * g->maxEngagement)) : packed;
 }
 
 void checkScale(const PlanInput& in) {
@@ -83,12 +98,18 @@ void checkScale(const PlanInput& in) {
       lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
       hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
     }
+    const double r = 0.5 * in.tools.back().diameter;
+    const Tool* g = grownTool(in);
+    const bool grown = g && n > pocketArea(in) / (M_PI * r * r);
+    const Tool& t = grown ? *g : in.tools.back();
     std::ostringstream m;
     m.precision(3);
-    m << "tool " << in.tools.back().id << " (diameter " << mm(in.tools.back().diameter) << " mm) in a "
-      << mm(hi.x - lo.x) << " x " << mm(hi.y - lo.y) << " mm pocket: about " << (std::isfinite(n) ? n : 1e308)
-      << " plunges, more than max_plunges (" << std::fixed << std::setprecision(0) << in.maxPlunges
-      << "): is the diameter in mm?";
+    m << "tool " << t.id << " (diameter " << mm(t.diameter) << " mm";
+    if (grown) m << ", max_engagement " << mm(t.maxEngagement) << " mm";
+    m << ") in a " << mm(hi.x - lo.x) << " x " << mm(hi.y - lo.y) << " mm pocket: about "
+      << (std::isfinite(n) ? n : 1e308) << (grown ? " plunge-equivalents (grown within the limit), " : " plunges, ")
+      << "more than max_plunges (" << std::fixed << std::setprecision(0) << in.maxPlunges << "): "
+      << (grown ? "is the limit in mm, or too small for this pocket?" : "is the diameter in mm?");
     throw Error(m.str());
   }
 }

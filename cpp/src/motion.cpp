@@ -111,7 +111,11 @@ class Touched {
     double bottom;
   };
   long cellOf(double v) const { return static_cast<long>(std::floor(v / bucket_)); }
-  static long long key(long i, long j) { return (static_cast<long long>(i) << 32) ^ (j & 0xffffffffLL); }
+  // Unsigned: shifting a negative cell index left is undefined.
+  static long long key(long i, long j) {
+    const unsigned long long hi = static_cast<unsigned long long>(i) << 32;
+    return static_cast<long long>(hi ^ (static_cast<unsigned long long>(j) & 0xffffffffULL));
+  }
   double bucket_, top_;
   std::vector<Disk> disks_;
   std::map<long long, std::vector<size_t>> grid_;

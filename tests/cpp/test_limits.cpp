@@ -87,6 +87,19 @@ TEST(Limits, EstimateAgainstMaxPlunges) {
   EXPECT_NO_THROW(validate(in));
 }
 
+// Growing within an engagement limit costs about kGrowthCost packed plunges each.
+TEST(Limits, EngagementLimitsCountTheirGrowth) {
+  PlanInput in = benchmark();
+  for (Tool& t : in.tools) t.maxEngagement = 0.25 * t.diameter;
+  const std::string e = planError(in);
+  EXPECT_TRUE(has(e, "tool 1 (diameter 12 mm, max_engagement 3 mm)")) << e;
+  EXPECT_TRUE(has(e, "is the limit in mm, or too small for this pocket?")) << e;
+  EXPECT_GT(estimatedPlunges(in), kGrowthCost * 228000 / (6 * 3));  // tools already largest first
+  // Half the diameter plans (8560 plunges, not run here: 15 s); the estimate allows it.
+  for (Tool& t : in.tools) t.maxEngagement = 0.5 * t.diameter;
+  EXPECT_LT(estimatedPlunges(in), in.maxPlunges);
+}
+
 TEST(Limits, TooManyVerticesAreRefused) {
   PlanInput in = benchmark();
   in.islands.clear();

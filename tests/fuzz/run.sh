@@ -4,8 +4,9 @@
 #    clang, AddressSanitizer and UndefinedBehaviorSanitizer (build-sanitize/);
 # 2. libFuzzer on the JSON-to-plan path for FUZZ_SECONDS (default 240), under
 #    the same sanitizers: a crash, a sanitizer report, an exception other than
-#    plunge::Error, a gouge, a run past 120 s (about a minute without the
-#    sanitizers) or past 4 GB fails. What it finds is written to
+#    plunge::Error, a gouge, a run past 900 s (the sanitizers and the coverage
+#    instrumentation make runs about 17 times slower: about a minute without
+#    them) or past 4 GB fails. What it finds is written to
 #    build-sanitize/fuzz-findings/: add it to tests/fuzz/regressions/.
 set -eu
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
@@ -30,6 +31,6 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 corpus="$B/fuzz-corpus"
 findings="$B/fuzz-findings"
 mkdir -p "$corpus" "$findings"
-"$B/tests/fuzz_plan" -max_total_time="${FUZZ_SECONDS:-240}" -timeout=120 -rss_limit_mb=4096 \
+"$B/tests/fuzz_plan" -max_total_time="${FUZZ_SECONDS:-240}" -timeout=900 -rss_limit_mb=4096 \
   -dict="$ROOT/tests/fuzz/plan.dict" -artifact_prefix="$findings/" -print_final_stats=1 \
   "$corpus" "$ROOT/tests/fuzz/corpus" "$ROOT/tests/fuzz/regressions"

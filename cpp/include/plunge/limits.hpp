@@ -24,8 +24,14 @@ constexpr size_t kMaxVertices = 1000000;
 constexpr size_t kPlanningVertices = 4000;
 constexpr double kMaxBoundaryTolerance = 0.05;
 
-// Plunges the pocket needs at most: its area over the smallest tool's disk
-// (packing and covering place fewer, since larger tools go first).
+// Growing a cut within an engagement limit (engagement.hpp) costs about this
+// many times more per plunge than packing.
+constexpr double kGrowthCost = 20.0;
+
+// The planner's work in plunges: the pocket's area over the smallest tool's
+// disk (packing and covering place fewer, since larger tools go first); with
+// an engagement limit e on the largest limited tool (radius r), at least
+// kGrowthCost x area / (r e) (its growth rings overlap).
 double estimatedPlunges(const PlanInput& in);
 
 // Throws plunge::Error for input beyond the limits above or estimated above
