@@ -474,8 +474,8 @@ std::string planSummary(const Plan& plan) {
   std::ostringstream s;
   s << std::fixed << std::setprecision(2) << st.plungeCount << " plunges (";
   for (size_t i = 0; i < st.perTool.size(); ++i)
-    s << (i ? ", " : "") << "T" << st.perTool[i].toolId << " " << std::defaultfloat << st.perTool[i].diameter
-      << std::fixed << " mm: " << st.perTool[i].count;
+    s << (i ? ", " : "") << "T" << st.perTool[i].toolId << " " << std::defaultfloat << std::setprecision(6)
+      << st.perTool[i].diameter << std::fixed << std::setprecision(2) << " mm: " << st.perTool[i].count;
   s << "); stock left: walls up to " << st.maxWallStockLeft << " mm (" << 100 * st.coreCoverage
     << " % of the core cut), floor up to " << st.maxFloorStockLeft << " mm (mean " << st.meanFloorStock << " mm); "
     << std::setprecision(1) << st.volumeRemoved / 1000 << " cm3 removed, " << st.volumeLeft / 1000 << " cm3 left";

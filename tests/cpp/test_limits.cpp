@@ -17,14 +17,7 @@ namespace {
 
 PlanInput benchmark() { return planInputFromJson(test::readData("shapes/benchmark.json")); }
 
-std::string planError(PlanInput in) {
-  try {
-    plan(in);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::planError;
 
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 

@@ -20,14 +20,7 @@ PlanInput square() {
   return in;
 }
 
-std::string planError(PlanInput in) {
-  try {
-    plan(in);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::planError;
 
 }  // namespace
 

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "plunge/error.hpp"
 #include "plunge/geometry.hpp"
 #include "plunge/plan.hpp"
 #include "plunge/region.hpp"
@@ -56,6 +57,16 @@ inline std::string readData(const std::string& rel) {
   std::stringstream s;
   s << f.rdbuf();
   return s.str();
+}
+
+// The message plan() refuses the input with ("" when it plans).
+inline std::string planError(PlanInput in) {
+  try {
+    plan(in);
+  } catch (const Error& e) {  // only the library's own refusals: anything else fails the test
+    return e.what();
+  }
+  return "";
 }
 
 // The same plunges, in the same order, bit for bit (determinism).
