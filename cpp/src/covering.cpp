@@ -237,15 +237,6 @@ class Coverer {
     std::stable_sort(sorted_.begin(), sorted_.end(), [&](int a, int b) { return radii[a] < radii[b]; });
     rMin_ = radii[sorted_.front()];
     rMax_ = radii[sorted_.back()];
-    // Where each tool's centres may go, as a box: corner placements are only
-    // looked for within a radius of it (a tool nearly as large as the pocket
-    // reaches a small part of it; the others reach everywhere).
-    for (double r : radii) {
-      Vec2 lo{1, 1}, hi{0, 0};  // empty
-      const clip::Paths centres = clip::toPaths(accessibleRegion(region_, r, opt_.allowance));
-      if (!centres.empty()) clip::bounds(centres, lo, hi);
-      centreBoxes_.push_back({lo, hi});
-    }
     // With a band the core is covered whole: only slivers of the polygon
     // approximation (under 0.01 mm^2 measured) may stay.
     core_ = opt.wallStock > 0.0;
@@ -591,15 +582,9 @@ class Coverer {
         if (feasibleNear(a, radii_[t], c)) centres.push_back(c);
         // A small piece of the core in a corner the tool only just reaches: the
         // corner placements themselves (the push off one wall lands beside them).
-        if (core_ && p.area < radii_[t] * radii_[t] && reaches(t, a)) cornerPlacementsNear(a, radii_[t], centres);
+        if (core_ && p.area < radii_[t] * radii_[t]) cornerPlacementsNear(a, radii_[t], centres);
         for (const Vec2& x : centres) queueCandidate(x, t, id);
       }
-  }
-
-  bool reaches(int t, Vec2 a) const {
-    const auto& [lo, hi] = centreBoxes_[t];
-    const double r = radii_[t] + 1e-6;
-    return a.x >= lo.x - r && a.x <= hi.x + r && a.y >= lo.y - r && a.y <= hi.y + r;
   }
 
   void cornerPlacementsNear(Vec2 a, double r, std::vector<Vec2>& out) const {
@@ -683,7 +668,6 @@ class Coverer {
   std::vector<double> radii_;
   CoveringOptions opt_;
   std::vector<int> sorted_;  // tool indices by increasing radius
-  std::vector<std::pair<Vec2, Vec2>> centreBoxes_;  // per tool: bounds of its feasible centres
   mutable std::unordered_map<Placement, bool, PlacementHash> fitsMemo_;
   double rMin_ = 0, rMax_ = 0, crumb_ = 0;
   bool core_ = false;  // a wall band: cover the core whole (CoveringOptions::wallStock)

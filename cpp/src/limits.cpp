@@ -114,6 +114,12 @@ void checkScale(const PlanInput& in) {
   }
 }
 
+Region planningRegion(const PlanInput& in, double& tolerance) {
+  Region full(in.boundary, in.islands);
+  std::optional<Region> coarse = simplifiedRegion(full, kPlanningVertices, kMaxBoundaryTolerance, tolerance);
+  return coarse ? std::move(*coarse) : std::move(full);
+}
+
 std::string dropToolsThatDoNotFit(PlanInput& in, const Region& region) {
   std::string dropped;
   for (size_t i = 0; i + 1 < in.tools.size();) {

@@ -170,7 +170,6 @@ bool isSculptured(const PlanInput& in, const FloorSurface& floor) {
                                         [](const Tool& t) { return t.shape != CutterShape::Flat; });
 }
 
-// Packing and covering, or the grid: the plunge positions of every tool.
 // See placePlunges: a piece left by the packing larger than this many disks of
 // the next tool means packing that one instead (the test shapes leave at most
 // 61; a 150 mm plunger in the 600 x 400 mm benchmark 706, a 100 mm one 140).
@@ -185,6 +184,7 @@ double largestPieceLeft(const Polygons& accessible, const std::vector<PackedDisk
   return largest;
 }
 
+// Packing and covering, or the grid: the plunge positions of every tool.
 CoverResult placePlunges(const PlanInput& in, const Region& region, const std::vector<double>& radii,
                          const Polygons& accessible, const Progress& progress) {
   if (in.strategy == "grid") {
@@ -417,13 +417,10 @@ Plan plan(PlanInput in, const Progress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   progress.stage(0.0, "checking the pocket");
   validate(in);
-  const Region full(in.boundary, in.islands);
   // Boundaries of many thousand vertices plan on walls simplified within a few
-  // um, that tolerance added to the radial allowance (region.hpp).
+  // um, that tolerance added to the radial allowance (limits.hpp).
   double tolerance = 0.0;
-  const std::optional<Region> coarse =
-      simplifiedRegion(full, kPlanningVertices, kMaxBoundaryTolerance, tolerance);
-  const Region& region = coarse ? *coarse : full;
+  const Region region = planningRegion(in, tolerance);
   in.radialAllowance += tolerance;
   const std::string dropped = dropToolsThatDoNotFit(in, region);
 

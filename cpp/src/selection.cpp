@@ -58,10 +58,8 @@ Plan planWithToolSelection(const PlanInput& input, const Progress& progress) {
   in.tools = in.library;
   validate(in);  // the library, largest first, and every other field
   const std::vector<Tool> library = in.tools;
-  const Region full(in.boundary, in.islands);
   double tolerance = 0.0;  // large boundaries: the medial axis of simplified walls (limits.hpp)
-  const std::optional<Region> coarse = simplifiedRegion(full, kPlanningVertices, kMaxBoundaryTolerance, tolerance);
-  const Region& region = coarse ? *coarse : full;
+  const Region region = planningRegion(in, tolerance);
 
   ToolSelection sel;
   const MedialAxis axis = medialAxis(region);

@@ -34,6 +34,11 @@ constexpr double kGrowthCost = 20.0;
 // kGrowthCost x area / (r e) (its growth rings overlap).
 double estimatedPlunges(const PlanInput& in);
 
+// The region a plan is made on: the given loops, or with more than
+// kPlanningVertices vertices those simplified (region.hpp's simplifiedRegion);
+// `tolerance` says by how much (0: as given), to add to the radial allowance.
+Region planningRegion(const PlanInput& in, double& tolerance);
+
 // Throws plunge::Error for input beyond the limits above or estimated above
 // in.maxPlunges. Needs validated input (tools sorted, numbers finite).
 void checkScale(const PlanInput& in);
