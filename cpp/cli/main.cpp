@@ -3,21 +3,12 @@
 #include <CLI/CLI.hpp>
 #include <fstream>
 #include <iostream>
-#include <sstream>
 
 #include "plunge/error.hpp"
 #include "plunge/io.hpp"
 #include "plunge/plan.hpp"
 
 namespace {
-
-std::string readFile(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw plunge::Error("cannot read " + path);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
 
 void writeFile(const std::string& path, const std::string& text) {
   if (path == "-") {
@@ -48,10 +39,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    plunge::PlanInput in = plunge::planInputFromJson(readFile(input));
     // A relative floor.brep is next to the input file.
-    const size_t slash = input.find_last_of('/');
-    in.baseDir = slash == std::string::npos ? "." : input.substr(0, slash);
+    const plunge::PlanInput in = plunge::readPlanInput(input);
     const plunge::Plan plan = plunge::plan(in);
     writeFile(output, plunge::planToJson(plan));
     std::cerr << "plunge-rough: " << plunge::planSummary(plan) << "\n";

@@ -5,8 +5,6 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
-#include <boost/geometry.hpp>
-#include <boost/geometry/index/rtree.hpp>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -14,12 +12,12 @@
 #include <unordered_map>
 
 #include "clip.hpp"
+#include "detail.hpp"
 #include "plunge/error.hpp"
 
-namespace bg = boost::geometry;
-namespace bgi = boost::geometry::index;
-
 namespace plunge {
+
+using namespace detail;
 
 namespace {
 
@@ -28,18 +26,11 @@ namespace {
 // ones, so that a disk touching a wall splits the material on either side
 // instead of leaving a sliver that joins every cusp along the wall.
 constexpr double kDiskChord = 0.005;
-constexpr double kTol = 1e-9;
 constexpr double kCoreOutlineTolerance = 0.01;  // mm, see coreRegion
 constexpr double kBandMargin = 0.05;             // mm, see Coverer::run
 // Corner placements pair the walls nearest a point, at most this many: with a
 // tool as large as the pocket every wall is "in reach" and all pairs would take minutes.
 constexpr size_t kCornerWalls = 64;
-
-using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
-using BBox = bg::model::box<BPoint>;
-using BoxValue = std::pair<BBox, int>;
-
-BBox boxOf(Vec2 lo, Vec2 hi) { return BBox(BPoint(lo.x, lo.y), BPoint(hi.x, hi.y)); }
 
 // `area` minus the disks. Done tile by tile: Clipper's sweep slows down with
 // the number of edges a scanline crosses, and the uncovered part is small, so
@@ -94,8 +85,7 @@ Vec2 interiorPoint(const clip::Paths& p) {
   std::vector<double> xs;
   for (const clip::Path& q : p)
     for (size_t i = 0, j = q.size() - 1; i < q.size(); j = i++) {
-      const Vec2 a = clip::toMm(q[j]), b = clip::toMm(q[i]);
-      if ((a.y > y) != (b.y > y)) xs.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+      if (const std::optional<double> x = crossingX(clip::toMm(q[j]), clip::toMm(q[i]), y)) xs.push_back(*x);
     }
   std::sort(xs.begin(), xs.end());
   Vec2 best{(lo.x + hi.x) * 0.5, y};
@@ -340,8 +330,7 @@ class Coverer {
       for (size_t i = 0, j = q.size() - 1; i < q.size(); j = i++) {
         const Vec2 a = clip::toMm(q[j]), b = clip::toMm(q[i]);
         boundary_.push_back({a, b});
-        boxes.emplace_back(boxOf({std::min(a.x, b.x), std::min(a.y, b.y)}, {std::max(a.x, b.x), std::max(a.y, b.y)}),
-                           static_cast<int>(boundary_.size() - 1));
+        boxes.emplace_back(boxOf(boundary_.back()), static_cast<int>(boundary_.size() - 1));
       }
     boundaryIndex_ = decltype(boundaryIndex_)(boxes.begin(), boxes.end());
   }
@@ -493,22 +482,18 @@ class Coverer {
       for (int t : gaps.groups[g]) groupOfTri[t] = static_cast<int>(g);
     std::vector<BoxValue> boxes;
     for (size_t t = 0; t < gaps.triangles.size(); ++t) {
-      Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
-      for (int v : gaps.triangles[t].v) {
-        const Vec2 p = packed[v].center;
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-      }
-      boxes.emplace_back(boxOf(lo, hi), static_cast<int>(t));
+      Bounds b;
+      for (int v : gaps.triangles[t].v) b.add(packed[v].center);
+      boxes.emplace_back(boxOf(b.lo, b.hi), static_cast<int>(t));
     }
-    bgi::rtree<BoxValue, bgi::rstar<16>> triIndex(boxes.begin(), boxes.end());
+    RStarTree<BoxValue> triIndex(boxes.begin(), boxes.end());
 
     // Gaps that hold uncovered material: locate a point of every uncovered piece.
     std::vector<int> groups;
     for (const Piece& p : pieces_) {
       if (!p.alive || p.area < crumb_) continue;
       const Vec2 q = interiorPoint(p.poly);
-      for (auto it = triIndex.qbegin(bgi::intersects(BPoint(q.x, q.y))); it != triIndex.qend(); ++it) {
+      for (auto it = triIndex.qbegin(bgi::intersects(toBPoint(q))); it != triIndex.qend(); ++it) {
         const GapTriangle& t = gaps.triangles[it->second];
         if (inTriangle(q, packed[t.v[0]].center, packed[t.v[1]].center, packed[t.v[2]].center)) {
           groups.push_back(groupOfTri[it->second]);
@@ -673,9 +658,9 @@ class Coverer {
   bool core_ = false;  // a wall band: cover the core whole (CoveringOptions::wallStock)
   clip::Paths accessible_;
   std::vector<Segment> boundary_;
-  bgi::rtree<BoxValue, bgi::rstar<16>> boundaryIndex_;
+  RStarTree<BoxValue> boundaryIndex_;
   std::vector<Piece> pieces_;
-  bgi::rtree<BoxValue, bgi::rstar<16>> pieceIndex_;
+  RStarTree<BoxValue> pieceIndex_;
   double uncovered_ = 0.0;
   int pins_ = 0;
   bool generating_ = false;

@@ -5,22 +5,16 @@
 #include <limits>
 #include <sstream>
 
+#include "detail.hpp"
 #include "plunge/error.hpp"
 #include "plunge/optimizer.hpp"
 
 namespace plunge {
 
+using namespace detail;
+
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-std::string where(Vec2 c) {
-  std::ostringstream s;
-  s.precision(6);
-  s << "(" << c.x << ", " << c.y << ")";
-  return s.str();
-}
 
 // Maximum of g over the circle of radius r around c (eq. 4.84), by the global
 // optimizer in one periodic variable; -inf if g is nowhere finite on it.
@@ -84,7 +78,7 @@ double DepthSolver::stopHeight(Vec2 c, const Cutter& cutter) const {
       // no floor under the disk: reported below unless the rim found some
     }
   }
-  if (!std::isfinite(best)) throw Error("no floor under the plunge at " + where(c));
+  if (!std::isfinite(best)) throw Error("no floor under the plunge at " + formatPoint(c));
   return best;
 }
 
@@ -109,7 +103,7 @@ double stopHeightBruteForce(const FloorSurface& floor, Vec2 c, const Cutter& cut
     const double v = lift({c.x + R * std::cos(t), c.y + R * std::sin(t)});
     if (std::isfinite(v)) rim.push_back({v, {t, 0}});
   }
-  if (inner.empty() && rim.empty()) throw Error("no floor under the plunge at " + where(c));
+  if (inner.empty() && rim.empty()) throw Error("no floor under the plunge at " + formatPoint(c));
   auto byValue = [](const auto& a, const auto& b) { return a.first > b.first; };
   std::sort(inner.begin(), inner.end(), byValue);
   std::sort(rim.begin(), rim.end(), byValue);

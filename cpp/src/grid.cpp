@@ -4,16 +4,11 @@
 #include <cmath>
 #include <numeric>
 
+#include "detail.hpp"
 #include "plunge/error.hpp"
 #include "plunge/polygon.hpp"
 
 namespace plunge {
-
-GridPattern gridPatternFromName(const std::string& name) {
-  if (name == "square") return GridPattern::Square;
-  if (name == "honeycomb") return GridPattern::Honeycomb;
-  throw Error("grid.pattern: unknown pattern '" + name + "' (use \"square\" or \"honeycomb\")");
-}
 
 namespace {
 
@@ -23,13 +18,9 @@ struct Piece {
 };
 
 Piece pieceOf(Polygons p) {
-  Piece k{std::move(p), {1e300, 1e300}, {-1e300, -1e300}};
-  for (const Loop& l : k.poly)
-    for (const Vec2& v : l) {
-      k.lo = {std::min(k.lo.x, v.x), std::min(k.lo.y, v.y)};
-      k.hi = {std::max(k.hi.x, v.x), std::max(k.hi.y, v.y)};
-    }
-  return k;
+  detail::Bounds b;
+  for (const Loop& l : p) b.add(l);
+  return {std::move(p), b.lo, b.hi};
 }
 
 // What is left, in pieces no larger than cells of `cell` mm (the band left along
@@ -55,9 +46,14 @@ std::vector<Piece> piecesOf(const Polygons& p, double cell) {
 
 }  // namespace
 
+void checkGridStep(double step) {
+  if (!(step >= 0.0 && step <= 1.0))
+    throw Error("grid.step must be 0 (the widest step that still covers) or in (0, 1] (a fraction of the diameter)");
+}
+
 CoverResult gridPlacements(const Region& region, const std::vector<double>& radii, const GridOptions& opt) {
   if (radii.empty()) throw Error("no tools given");
-  if (!(opt.step >= 0.0 && opt.step <= 1.0)) throw Error("grid.step must be in (0, 1] (a fraction of the diameter)");
+  checkGridStep(opt.step);
   std::vector<int> order(radii.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return radii[a] > radii[b]; });

@@ -2,13 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
+#include "detail.hpp"
 #include "plunge/error.hpp"
+#include "plunge/limits.hpp"
 
 namespace plunge {
 
@@ -38,7 +42,46 @@ void onlyKeys(const json& j, const std::set<std::string>& allowed, const std::st
     if (!allowed.count(it.key())) throw Error(where + "unknown key '" + it.key() + "'");
 }
 
+// One option's value by name: "key: unknown noun 'name' (use "a", "b" or "c")".
+template <class E>
+E fromName(const std::string& name, const char* key, const char* noun,
+           std::initializer_list<std::pair<const char*, E>> names) {
+  std::string use;
+  size_t k = 0;
+  for (const auto& [text, value] : names) {
+    if (name == text) return value;
+    use += std::string(k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + "\"" + text + "\"";
+    ++k;
+  }
+  throw Error(std::string(key) + ": unknown " + noun + " '" + name + "' (use " + use + ")");
+}
+
+std::string stringOf(const json& j, const std::string& what) {
+  if (!j.is_string()) throw Error(what + ": expected a string");
+  return j.get<std::string>();
+}
+
 }  // namespace
+
+Strategy strategyFromName(const std::string& name) {
+  return fromName<Strategy>(name, "strategy", "strategy", {{"packing", Strategy::Packing}, {"grid", Strategy::Grid}});
+}
+
+PackingOrder packingOrderFromName(const std::string& name) {
+  return fromName<PackingOrder>(
+      name, "packing_order", "order",
+      {{"auto", PackingOrder::Auto}, {"hole_degree", PackingOrder::HoleDegree}, {"lattice", PackingOrder::Lattice}});
+}
+
+TourMethod tourMethodFromName(const std::string& name) {
+  return fromName<TourMethod>(name, "sequencing", "method",
+                              {{"local_search", TourMethod::LocalSearch}, {"annealing", TourMethod::Annealing}});
+}
+
+GridPattern gridPatternFromName(const std::string& name) {
+  return fromName<GridPattern>(name, "grid.pattern", "pattern",
+                               {{"square", GridPattern::Square}, {"honeycomb", GridPattern::Honeycomb}});
+}
 
 namespace {
 
@@ -58,8 +101,8 @@ std::vector<Tool> toolList(const json& ts, const std::string& what) {
     t.id = -1;
     if (ts[i].contains("id")) {
       if (!ts[i]["id"].is_number_integer() || ts[i]["id"].get<long long>() <= 0 ||
-          ts[i]["id"].get<long long>() > 1000000)
-        throw Error(name + ".id: expected a positive integer");
+          ts[i]["id"].get<long long>() > kMaxToolId)
+        throw Error(name + ".id: expected a positive integer up to " + std::to_string(kMaxToolId));
       t.id = ts[i]["id"].get<int>();
     }
     if (ts[i].contains("feed")) t.feed = number(ts[i]["feed"], name + ".feed");
@@ -119,7 +162,7 @@ PlanInput planInputFromJson(const std::string& text) {
            {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",
             "min_coverage", "contact_ratio", "packing_order", "sequencing", "start", "tool_library", "selection",
             "time_model", "grid", "max_wall_stock", "max_floor_stock", "lead_out", "stock_aware_heights",
-            "rapid_clearance", "max_plunges"},
+            "rapid_clearance", "max_plunges", "final_depth"},
            "input: ");
   PlanInput in;
   if (j.contains("version") && !(j["version"].is_number_integer() && j["version"].get<long long>() == 1))
@@ -166,10 +209,7 @@ PlanInput planInputFromJson(const std::string& text) {
     if (a.contains("radial")) in.radialAllowance = number(a["radial"], "allowance.radial");
     if (a.contains("floor")) in.floorAllowance = number(a["floor"], "allowance.floor");
   }
-  if (j.contains("strategy")) {
-    if (!j["strategy"].is_string()) throw Error("strategy: expected a string");
-    in.strategy = j["strategy"].get<std::string>();
-  }
+  if (j.contains("strategy")) in.strategy = strategyFromName(stringOf(j["strategy"], "strategy"));
   if (j.contains("seed")) {
     if (!j["seed"].is_number_integer() || j["seed"].get<long long>() < 0)
       throw Error("seed: expected a non-negative integer");
@@ -181,19 +221,15 @@ PlanInput planInputFromJson(const std::string& text) {
   if (j.contains("lead_out")) in.leadOut = number(j["lead_out"], "lead_out");
   if (j.contains("rapid_clearance")) in.rapidClearance = number(j["rapid_clearance"], "rapid_clearance");
   if (j.contains("max_plunges")) in.maxPlunges = number(j["max_plunges"], "max_plunges");
+  if (j.contains("final_depth")) in.finalDepth = number(j["final_depth"], "final_depth");
   if (j.contains("stock_aware_heights")) {
     if (!j["stock_aware_heights"].is_boolean()) throw Error("stock_aware_heights: expected true or false");
     in.stockAwareHeights = j["stock_aware_heights"].get<bool>();
   }
   if (j.contains("contact_ratio")) in.contactRatio = number(j["contact_ratio"], "contact_ratio");
-  if (j.contains("packing_order")) {
-    if (!j["packing_order"].is_string()) throw Error("packing_order: expected a string");
-    in.packingOrder = j["packing_order"].get<std::string>();
-  }
-  if (j.contains("sequencing")) {
-    if (!j["sequencing"].is_string()) throw Error("sequencing: expected a string");
-    in.sequencing = j["sequencing"].get<std::string>();
-  }
+  if (j.contains("packing_order"))
+    in.packingOrder = packingOrderFromName(stringOf(j["packing_order"], "packing_order"));
+  if (j.contains("sequencing")) in.sequencing = tourMethodFromName(stringOf(j["sequencing"], "sequencing"));
   if (j.contains("start")) in.start = point(j["start"], "start");
   if (j.contains("selection")) {
     checkObject(j, "selection", {"weight_time", "weight_tools", "rise_factor"});
@@ -213,12 +249,22 @@ PlanInput planInputFromJson(const std::string& text) {
   if (j.contains("grid")) {
     checkObject(j, "grid", {"pattern", "step"});
     const json& o = j["grid"];
-    if (o.contains("pattern")) {
-      if (!o["pattern"].is_string()) throw Error("grid.pattern: expected \"square\" or \"honeycomb\"");
-      in.gridPattern = o["pattern"].get<std::string>();
-    }
+    if (o.contains("pattern")) in.gridPattern = gridPatternFromName(stringOf(o["pattern"], "grid.pattern"));
     if (o.contains("step")) in.gridStep = number(o["step"], "grid.step");
   }
+  return in;
+}
+
+PlanInput readPlanInput(const std::string& path) {
+  std::error_code ec;
+  std::ifstream f(path, std::ios::binary);
+  if (!f || std::filesystem::is_directory(path, ec)) throw Error("cannot read " + path);
+  std::ostringstream text;
+  text << f.rdbuf();
+  PlanInput in = planInputFromJson(text.str());
+  const std::filesystem::path folder = std::filesystem::absolute(path, ec).parent_path();
+  in.baseDir = ec ? std::filesystem::path(path).parent_path().string() : folder.string();
+  if (in.baseDir.empty()) in.baseDir = ".";
   return in;
 }
 
@@ -364,11 +410,9 @@ std::string stockMapSvg(const StockMap& m, double limit) {
 }  // namespace
 
 std::string planToSvg(const PlanInput& input, const Plan& plan) {
-  Vec2 lo = input.boundary.front(), hi = lo;
-  for (const Vec2& p : input.boundary) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-  }
+  detail::Bounds box;
+  box.add(input.boundary);
+  const Vec2 lo = box.lo, hi = box.hi;
   const double w = hi.x - lo.x, h = hi.y - lo.y;
   const double size = std::max(w, h);
   const double margin = 0.04 * size;

@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "detail.hpp"
 #include "plunge/covering.hpp"
 #include "plunge/error.hpp"
 #include "plunge/polygon.hpp"
@@ -72,6 +73,7 @@ void checkScale(const PlanInput& in) {
   requireLength(in.topZ, "top_z");
   requireLength(in.safeZ, "safe_z");
   if (in.floor.kind == Floor::Kind::Flat) requireLength(in.floor.z, "floor.z");
+  if (in.finalDepth) requireLength(*in.finalDepth, "final_depth");
   requireLength(in.radialAllowance, "allowance.radial");
   requireLength(in.floorAllowance, "allowance.floor");
   requireLength(in.maxWallStock, "max_wall_stock");
@@ -93,11 +95,9 @@ void checkScale(const PlanInput& in) {
   if (!(in.maxPlunges >= 1.0)) throw Error("max_plunges must be at least 1");
   const double n = estimatedPlunges(in);
   if (!(n <= in.maxPlunges)) {
-    Vec2 lo = in.boundary.front(), hi = lo;
-    for (const Vec2& p : in.boundary) {
-      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-    }
+    detail::Bounds box;
+    box.add(in.boundary);
+    const Vec2 lo = box.lo, hi = box.hi;
     const double r = 0.5 * in.tools.back().diameter;
     const Tool* g = grownTool(in);
     const bool grown = g && n > pocketArea(in) / (M_PI * r * r);

@@ -6,22 +6,15 @@
 #include <limits>
 #include <sstream>
 
+#include "detail.hpp"
 #include "plunge/error.hpp"
 
 namespace plunge {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+using detail::kInf;
 
-std::string pointText(const double* x, int d) {
-  std::ostringstream s;
-  s.precision(10);
-  s << "(";
-  for (int i = 0; i < d; ++i) s << (i ? ", " : "") << x[i];
-  s << ")";
-  return s.str();
-}
 
 // The function to minimise in normalised coordinates u in [0, 1]^d.
 class Problem {
@@ -52,7 +45,7 @@ class Problem {
     const double v = f_(x.data());
     if (!std::isfinite(v)) {
       if (opt_.skipNonFinite) return kInf;
-      throw Error("the function returned a non-finite value at " + pointText(x.data(), d_));
+      throw Error("the function returned a non-finite value at " + detail::formatPoint(x.data(), d_, 10));
     }
     return sign_ * v;
   }

@@ -1,24 +1,21 @@
 #include "plunge/packing.hpp"
 
 #include <algorithm>
-#include <boost/geometry.hpp>
-#include <boost/geometry/index/rtree.hpp>
 #include <cmath>
 #include <numeric>
 #include <set>
 #include <limits>
 #include <tuple>
 
+#include "detail.hpp"
 #include "plunge/error.hpp"
-
-namespace bg = boost::geometry;
-namespace bgi = boost::geometry::index;
 
 namespace plunge {
 
+using namespace detail;
+
 namespace {
 
-constexpr double kTol = 1e-9;      // feasibility slack (mm)
 constexpr double kParamTol = 1e-9;  // tangent point may sit this far past a wall's end (relative)
 
 Vec2 unitLeft(const Segment& s) {
@@ -81,12 +78,6 @@ double wallRowInset(double r, double rho, double band) {
 double holeDegree(double dMin, double r) { return 1.0 - std::clamp(dMin, 0.0, r) / r; }
 
 namespace {
-
-using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
-using BBox = bg::model::box<BPoint>;
-using PointValue = std::pair<BPoint, int>;
-
-BBox square(Vec2 p, double h) { return BBox(BPoint(p.x - h, p.y - h), BPoint(p.x + h, p.y + h)); }
 
 struct Site {
   enum Kind { Wall, Vertex, Disk } kind;
@@ -206,7 +197,7 @@ class Packer {
   }
 
   bool disksClear(Vec2 p) const {
-    for (auto it = diskIndex_.qbegin(bgi::intersects(square(p, rho_ + maxReach_))); it != diskIndex_.qend(); ++it)
+    for (auto it = diskIndex_.qbegin(bgi::intersects(boxAround(p, rho_ + maxReach_))); it != diskIndex_.qend(); ++it)
       if (dist(p, disks[it->second].center) < need(it->second) - kTol) return false;
     return true;
   }
@@ -236,7 +227,7 @@ class Packer {
       best = std::min(best, dist(p, q) - c_);
     }
     const double reach = rho_ + maxReach_ + r_;
-    for (auto it = diskIndex_.qbegin(bgi::intersects(square(p, reach))); it != diskIndex_.qend(); ++it) {
+    for (auto it = diskIndex_.qbegin(bgi::intersects(boxAround(p, reach))); it != diskIndex_.qend(); ++it) {
       const int k = it->second;
       if ((g1.kind == Site::Disk && g1.index == k) || (g2.kind == Site::Disk && g2.index == k)) continue;
       best = std::min(best, dist(p, disks[k].center) - need(k));
@@ -250,7 +241,7 @@ class Packer {
     if (!vertexConeOk(a, p) || !vertexConeOk(b, p) || !feasible(p)) return;
     const int id = static_cast<int>(cands_.size());
     cands_.push_back({p, a, b, dMinOf(p, a, b), true});
-    candIndex_.insert({BPoint(p.x, p.y), id});
+    candIndex_.insert({toBPoint(p), id});
     queue_.insert(keyOf(id));
   }
 
@@ -285,7 +276,7 @@ class Packer {
     for (int w : region_.wallsNear(at, siteReach + c_)) addPair(s, {Site::Wall, w});
     for (int v : region_.reflexVerticesNear(at, siteReach + c_)) addPair(s, {Site::Vertex, v});
     std::vector<int> near;
-    for (auto it = diskIndex_.qbegin(bgi::intersects(square(at, siteReach + rho_ + maxReach_)));
+    for (auto it = diskIndex_.qbegin(bgi::intersects(boxAround(at, siteReach + rho_ + maxReach_)));
          it != diskIndex_.qend(); ++it)
       if (it->second != k && (!laterOnly || it->second > k)) near.push_back(it->second);
     std::sort(near.begin(), near.end());
@@ -318,11 +309,11 @@ class Packer {
     PackedDisk d = proto_;
     d.center = p;
     disks.push_back(d);
-    diskIndex_.insert({BPoint(p.x, p.y), k});
+    diskIndex_.insert({toBPoint(p), k});
     maxReach_ = std::max(maxReach_, r_);
     // Candidates now overlapping die; those nearby may see a smaller d_min.
     std::vector<PointValue> hits;
-    candIndex_.query(bgi::intersects(square(p, 2 * rho_ + r_)), std::back_inserter(hits));
+    candIndex_.query(bgi::intersects(boxAround(p, 2 * rho_ + r_)), std::back_inserter(hits));
     for (const PointValue& h : hits) {
       Candidate& c = cands_[h.second];
       if (!c.alive) continue;
@@ -348,8 +339,8 @@ class Packer {
   bool hasLattice_ = false;  // anchored at the first circle of the largest tool
   Vec2 latOrigin_, latDir_;
   std::vector<Candidate> cands_;
-  bgi::rtree<PointValue, bgi::quadratic<16>> candIndex_;
-  bgi::rtree<PointValue, bgi::quadratic<16>> diskIndex_;
+  QuadraticTree<PointValue> candIndex_;
+  QuadraticTree<PointValue> diskIndex_;
   std::set<Key> queue_;
 };
 
@@ -373,6 +364,8 @@ std::vector<PackedDisk> packMaxHoleDegree(const Region& region, const std::vecto
     throw Error("packing contact ratio must be in (0, 1]");
   if (!(options.allowance >= 0.0) || !std::isfinite(options.allowance))
     throw Error("radial allowance must be a finite number >= 0");
+  if (options.order == PackingOrder::Auto)
+    throw Error("packing order: auto is the plan's choice between hole_degree and lattice");
   std::vector<int> order(radii.size());
   std::iota(order.begin(), order.end(), 0);
   for (double r : radii)

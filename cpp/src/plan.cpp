@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <future>
 #include <limits>
 #include <memory>
@@ -10,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "detail.hpp"
 #include "plunge/covering.hpp"
 #include "plunge/depth.hpp"
 #include "plunge/engagement.hpp"
@@ -51,9 +53,8 @@ void validateMill(const Tool& t, const std::string& name) {
     throw Error(name + ".flute_length must exceed the corner radius by 0.1 mm or more");
 }
 
-}  // namespace
-
-void validate(PlanInput& in) {
+// Each tool's numbers, then the tools sorted largest first.
+void validateTools(PlanInput& in) {
   if (in.tools.empty()) throw Error(in.autoTools ? "tool_library: at least one tool is required"
                                                  : "tools: at least one tool is required");
   std::set<int> ids;
@@ -65,7 +66,8 @@ void validate(PlanInput& in) {
     if (t.diameter <= 0.0) throw Error(name + ".diameter must be > 0");
     requireFinite(t.feed, name + ".feed");
     if (t.feed <= 0.0) throw Error(name + ".feed must be > 0");
-    if (t.id <= 0) throw Error(name + ".id must be a positive integer");
+    if (t.id <= 0 || t.id > kMaxToolId)
+      throw Error(name + ".id must be a positive integer up to " + std::to_string(kMaxToolId));
     if (!ids.insert(t.id).second) throw Error(name + ".id " + std::to_string(t.id) + " is used twice");
     if (!diameters.insert(t.diameter).second)
       throw Error(name + ".diameter " + std::to_string(t.diameter) + " is given twice");
@@ -82,6 +84,10 @@ void validate(PlanInput& in) {
                    [](const Tool& a, const Tool& b) { return a.diameter > b.diameter; });
   for (const Tool& t : in.tools)
     if (!t.centerCutting) startHoleTool(in.tools, t);  // throws naming the fix
+}
+
+// Heights and the floor.
+void validateHeights(const PlanInput& in) {
   requireFinite(in.topZ, "top_z");
   requireFinite(in.safeZ, "safe_z");
   requireFinite(in.radialAllowance, "allowance.radial");
@@ -98,11 +104,16 @@ void validate(PlanInput& in) {
   } else if (in.floor.kind == Floor::Kind::Brep && in.floor.brep.empty()) {
     throw Error("floor.brep: no file name");
   }
-  if (in.strategy != "packing" && in.strategy != "grid")
-    throw Error("strategy: unknown strategy '" + in.strategy + "' (use \"packing\" or \"grid\")");
-  gridPatternFromName(in.gridPattern);
-  requireFinite(in.gridStep, "grid.step");
-  if (!(in.gridStep >= 0.0 && in.gridStep <= 1.0)) throw Error("grid.step must be in (0, 1] (a fraction of the diameter)");
+  if (in.finalDepth) {
+    requireFinite(*in.finalDepth, "final_depth");
+    if (*in.finalDepth + in.floorAllowance >= in.topZ)
+      throw Error("final_depth plus the floor allowance must be below top_z");
+  }
+}
+
+// The options of the tool choice, the time model, the grid, covering and stock.
+void validateOptions(const PlanInput& in) {
+  checkGridStep(in.gridStep);
   for (double v : {in.timeModel.rapidRate, in.timeModel.retractRate})
     if (!std::isfinite(v) || v <= 0.0) throw Error("time_model: rapid_rate and retract_rate must be > 0");
   if (!std::isfinite(in.timeModel.toolChangeSeconds) || in.timeModel.toolChangeSeconds < 0.0)
@@ -112,13 +123,10 @@ void validate(PlanInput& in) {
       so.weightTime + so.weightTools <= 0)
     throw Error("selection: weight_time and weight_tools must be >= 0, not both 0");
   if (!std::isfinite(so.riseFactor) || so.riseFactor <= 1.0) throw Error("selection.rise_factor must be > 1");
-  if (in.packingOrder != "auto" && in.packingOrder != "hole_degree" && in.packingOrder != "lattice")
-    throw Error("packing_order: unknown order '" + in.packingOrder + "' (use \"auto\", \"hole_degree\" or \"lattice\")");
   requireFinite(in.minCoverage, "min_coverage");
   if (!(in.minCoverage > 0.0 && in.minCoverage <= 1.0)) throw Error("min_coverage must be in (0, 1]");
   requireFinite(in.contactRatio, "contact_ratio");
   if (!(in.contactRatio >= 0.5 && in.contactRatio <= 1.0)) throw Error("contact_ratio must be in [0.5, 1]");
-  tourMethodFromName(in.sequencing);  // throws for an unknown method
   requireFinite(in.maxWallStock, "max_wall_stock");
   if (in.maxWallStock < 0.0) throw Error("max_wall_stock must be >= 0 (0: cover down to min_coverage)");
   requireFinite(in.maxFloorStock, "max_floor_stock");
@@ -132,6 +140,14 @@ void validate(PlanInput& in) {
     requireFinite(in.start->y, "start.y");
   }
   requireFinite(in.maxPlunges, "max_plunges");
+}
+
+}  // namespace
+
+void validate(PlanInput& in) {
+  validateTools(in);
+  validateHeights(in);
+  validateOptions(in);
   checkScale(in);
 }
 
@@ -154,8 +170,7 @@ namespace {
 std::unique_ptr<FloorSurface> makeFloor(const PlanInput& in) {
   if (in.floor.kind == Floor::Kind::Flat) return makeFlatFloor(in.floor.z);
   if (in.floor.kind == Floor::Kind::Expression) return makeExpressionFloor(in.floor.expression);
-  const std::string& f = in.floor.brep;
-  return makeBrepFloor(f.front() == '/' || in.baseDir.empty() ? f : in.baseDir + "/" + f);
+  return makeBrepFloor(resolveInputPath(in, in.floor.brep));
 }
 
 int toolIndex(const PlanInput& in, int id) {
@@ -175,6 +190,14 @@ bool isSculptured(const PlanInput& in, const FloorSurface& floor) {
 // 61; a 150 mm plunger in the 600 x 400 mm benchmark 706, a 100 mm one 140).
 constexpr double kGreedyPiece = 200.0;
 
+// The depth solver's cells (depth.hpp): a quarter of the smallest tool's
+// diameter, but no finer than this fraction of the pocket's diagonal.
+constexpr double kDepthCellFraction = 1e-3;
+// The hexagon each disk of radius r covers in the thinnest covering: 3 sqrt(3) / 2 r^2.
+constexpr double kHexCellArea = 2.598076211353316;
+// Coverage short of min_coverage by less than this is rounding, not worth a warning.
+constexpr double kCoverageSlack = 1e-3;
+
 double largestPieceLeft(const Polygons& accessible, const std::vector<PackedDisk>& packed) {
   std::vector<Circle> disks;
   for (const PackedDisk& d : packed) disks.push_back({d.center, d.radius});
@@ -187,9 +210,9 @@ double largestPieceLeft(const Polygons& accessible, const std::vector<PackedDisk
 // Packing and covering, or the grid: the plunge positions of every tool.
 CoverResult placePlunges(const PlanInput& in, const Region& region, const std::vector<double>& radii,
                          const Polygons& accessible, const Progress& progress) {
-  if (in.strategy == "grid") {
+  if (in.strategy == Strategy::Grid) {
     GridOptions go;
-    go.pattern = gridPatternFromName(in.gridPattern);
+    go.pattern = in.gridPattern;
     go.step = in.gridStep;
     go.allowance = in.radialAllowance;
     go.progress = progress;
@@ -225,8 +248,7 @@ CoverResult placePlunges(const PlanInput& in, const Region& region, const std::v
     }
     return coverRegion(region, radii, packed, co);
   };
-  if (in.packingOrder == "hole_degree") return packAndCover(PackingOrder::HoleDegree);
-  if (in.packingOrder == "lattice") return packAndCover(PackingOrder::Lattice);
+  if (in.packingOrder != PackingOrder::Auto) return packAndCover(in.packingOrder);
   auto lattice = std::async(std::launch::async, packAndCover, PackingOrder::Lattice);
   CoverResult cover = packAndCover(PackingOrder::HoleDegree);
   CoverResult other = lattice.get();
@@ -241,11 +263,8 @@ std::vector<CutDisk> depthsOf(const PlanInput& in, const CoverResult& cover, con
   for (const CoverDisk& d : cover.disks) {
     progress.tick(0.75 + 0.1 * static_cast<double>(out.size()) / cover.disks.size());
     const double z = depths.stopHeight(d.center, cutterOf(in.tools[d.tool])) + in.floorAllowance;
-    if (z >= in.topZ) {
-      std::ostringstream where;
-      where << "(" << d.center.x << ", " << d.center.y << ")";
-      throw Error("the floor rises to top_z or above under the plunge at " + where.str());
-    }
+    if (z >= in.topZ)
+      throw Error("the floor rises to top_z or above under the plunge at " + detail::formatPoint(d.center));
     out.push_back({d.center, d.tool, z});
   }
   return out;
@@ -256,7 +275,7 @@ std::vector<CutDisk> depthsOf(const PlanInput& in, const CoverResult& cover, con
 void sequence(const PlanInput& in, const std::vector<CutDisk>& disks, Plan& out) {
   Vec2 at = in.start ? *in.start : in.boundary.front();
   TourOptions to;
-  to.method = tourMethodFromName(in.sequencing);
+  to.method = in.sequencing;
   to.seed = in.seed;
   for (size_t t = 0; t < in.tools.size(); ++t) {
     std::vector<const CutDisk*> mine;
@@ -377,7 +396,7 @@ void coverageStats(const PlanInput& in, const Region& region, const Polygons& co
   out.stats.accessibleArea = cover.accessibleArea;
   out.stats.coveredArea = cover.coveredArea;
   out.stats.coverage = cover.accessibleArea > 0 ? cover.coveredArea / cover.accessibleArea : 0.0;
-  out.stats.hexReferenceCount = cover.accessibleArea / (1.5 * std::sqrt(3.0) * rMax * rMax);
+  out.stats.hexReferenceCount = cover.accessibleArea / (kHexCellArea * rMax * rMax);
   // The core: measured on the covering's own polygons when it planned one,
   // otherwise (a grid, or no band) from the disks.
   Polygons coreLeft = cover.coreUncovered;
@@ -385,7 +404,7 @@ void coverageStats(const PlanInput& in, const Region& region, const Polygons& co
   if (in.maxWallStock <= 0.0) {
     out.stats.coreArea = cover.accessibleArea;
     coreLeft = cover.uncovered;
-  } else if (in.strategy == "grid") {
+  } else if (in.strategy == Strategy::Grid) {
     out.stats.coreArea = poly::area(core);
     std::vector<Circle> disks;
     for (const CoverDisk& d : cover.disks) disks.push_back({d.center, d.radius});
@@ -400,66 +419,112 @@ void coverageStats(const PlanInput& in, const Region& region, const Polygons& co
   if (in.maxWallStock > 0.0 && poly::area(coreLeft) > 0.01) {
     w << "the plunges leave " << poly::area(coreLeft) << " mm^2 farther than " << in.maxWallStock
       << " mm from the walls uncut (" << 100 * out.stats.coreCoverage << " % of it cut)";
-    if (in.strategy == "grid") w << ": a grid's fixed spacing cannot reach it";
+    if (in.strategy == Strategy::Grid) w << ": a grid's fixed spacing cannot reach it";
     out.warnings.push_back(w.str());
-  } else if (in.maxWallStock <= 0.0 && out.stats.coverage < in.minCoverage - 1e-3) {
+  } else if (in.maxWallStock <= 0.0 && out.stats.coverage < in.minCoverage - kCoverageSlack) {
     w << "the plunges clear " << 100 * out.stats.coverage << " % of the reachable floor, less than the "
       << 100 * in.minCoverage << " % asked for: material stays along the walls";
-    if (in.strategy == "grid") w << " (a grid's fixed spacing cannot reach it)";
+    if (in.strategy == Strategy::Grid) w << " (a grid's fixed spacing cannot reach it)";
     out.warnings.push_back(w.str());
   }
 }
 
-}  // namespace
+// The pocket as planned: the region (walls simplified when huge, the tolerance
+// added to the radial allowance), what the smallest tool reaches, and the core
+// beyond the wall band. Leaves out the tools that fit nowhere (a warning).
+struct Pocket {
+  Region region;
+  Polygons accessible;
+  Polygons core;  // empty without a wall band
+};
 
-Plan plan(PlanInput in, const Progress& progress) {
-  if (in.autoTools) return planWithToolSelection(in, progress);
-  const auto t0 = std::chrono::steady_clock::now();
-  progress.stage(0.0, "checking the pocket");
-  validate(in);
+Pocket pocketOf(PlanInput& in, Plan& out) {
   // Boundaries of many thousand vertices plan on walls simplified within a few
   // um, that tolerance added to the radial allowance (limits.hpp).
   double tolerance = 0.0;
-  const Region region = planningRegion(in, tolerance);
+  Pocket pocket{planningRegion(in, tolerance), {}, {}};
   in.radialAllowance += tolerance;
-  const std::string dropped = dropToolsThatDoNotFit(in, region);
-
-  std::vector<double> radii;
-  for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
-  const double rMin = radii.back();
-
-  Plan out;
-  if (!dropped.empty()) out.warnings.push_back(dropped);
   out.stats.boundaryTolerance = tolerance;
-  out.accessible = accessibleRegion(region, rMin, in.radialAllowance);
-  if (poly::area(out.accessible) <= 0.0) {
+  const std::string dropped = dropToolsThatDoNotFit(in, pocket.region);
+  if (!dropped.empty()) out.warnings.push_back(dropped);
+  const double rMin = 0.5 * in.tools.back().diameter;
+  pocket.accessible = accessibleRegion(pocket.region, rMin, in.radialAllowance);
+  if (poly::area(pocket.accessible) <= 0.0) {
     throw Error("no tool fits in the pocket: the smallest tool (diameter " + std::to_string(2 * rMin) +
                 ") with the radial allowance does not fit anywhere");
   }
+  out.accessible = pocket.accessible;
+  if (in.maxWallStock <= 0.0) return pocket;
   // A band wider than half the pocket's extent leaves no core (and is no offset to compute).
-  const bool bandFits = in.maxWallStock < 0.5 * dist(region.minCorner(), region.maxCorner());
-  const Polygons core = in.maxWallStock > 0.0 && bandFits
-                            ? coreRegion(region, out.accessible, in.radialAllowance, in.maxWallStock)
-                            : Polygons{};
-  if (in.maxWallStock > 0.0 && poly::area(core) <= 0.0) {
+  if (in.maxWallStock < 0.5 * dist(pocket.region.minCorner(), pocket.region.maxCorner()))
+    pocket.core = coreRegion(pocket.region, pocket.accessible, in.radialAllowance, in.maxWallStock);
+  if (poly::area(pocket.core) <= 0.0) {
     std::ostringstream m;
     m << "max_wall_stock: a band of " << in.maxWallStock
       << " mm along the walls is the whole pocket, nothing would be cut (use a smaller band, or 0 to cover the"
          " reachable floor)";
     throw Error(m.str());
   }
-  // The floor: flat, an expression or BREP faces (checked before the long part).
-  const std::unique_ptr<FloorSurface> floor = makeFloor(in);
+  return pocket;
+}
 
+// Plunge positions and their stop heights: packing and covering (or the grid),
+// the depth of each (4.4), the rest step in Z, then no plunge below final_depth.
+std::vector<CutDisk> placeAndDepth(const PlanInput& in, const Pocket& pocket, const FloorSurface& floor,
+                                   const DepthSolver& depths, Plan& out, CoverResult& cover,
+                                   const Progress& progress) {
+  std::vector<double> radii;
+  for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
   progress.stage(0.05, "packing and covering");
-  const CoverResult cover = placePlunges(in, region, radii, out.accessible, progress);
-  out.stats.regionArea = poly::area(allowedRegion(region, in.radialAllowance));
-
+  cover = placePlunges(in, pocket.region, radii, pocket.accessible, progress);
+  out.stats.regionArea = poly::area(allowedRegion(pocket.region, in.radialAllowance));
   progress.stage(0.75, "plunge depths");
-  const Vec2 lo = region.minCorner(), hi = region.maxCorner();
-  const DepthSolver depths(*floor, lo, hi, std::max(0.5 * rMin, 1e-3 * dist(lo, hi)));
   std::vector<CutDisk> disks = depthsOf(in, cover, depths, progress);
-  restStep(in, region, *floor, depths, disks, out, progress);
+  restStep(in, pocket.region, floor, depths, disks, out, progress);
+  if (in.finalDepth)
+    for (CutDisk& d : disks) d.z = std::max(d.z, *in.finalDepth + in.floorAllowance);
+  return disks;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+std::string resolveInputPath(const PlanInput& in, const std::string& path) {
+  const std::filesystem::path p(path);
+  if (p.is_absolute() || in.baseDir.empty()) return p.string();
+  return (std::filesystem::path(in.baseDir) / p).string();
+}
+
+Plan plan(PlanInput in, const Progress& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  progress.stage(0.0, "checking the pocket");
+  if (in.autoTools) in.tools = in.library;
+  validate(in);
+  // Each tool set the choice tries is an input of its own (a subset of the
+  // library may lack the start-hole drill a plunger needs).
+  auto planToolSet = [](PlanInput sub, const Progress& p) {
+    validate(sub);
+    return planWithTools(std::move(sub), p);
+  };
+  Plan out = in.autoTools ? planWithToolSelection(in, planToolSet, progress) : planWithTools(std::move(in), progress);
+  out.stats.planningSeconds = secondsSince(t0);
+  return out;
+}
+
+Plan planWithTools(PlanInput in, const Progress& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Plan out;
+  const Pocket pocket = pocketOf(in, out);
+  // The floor: flat, an expression or BREP faces (read before the long part).
+  const std::unique_ptr<FloorSurface> floor = makeFloor(in);
+  const Vec2 lo = pocket.region.minCorner(), hi = pocket.region.maxCorner();
+  const DepthSolver depths(*floor, lo, hi,
+                           std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)));
+  CoverResult cover;
+  const std::vector<CutDisk> disks = placeAndDepth(in, pocket, *floor, depths, out, cover, progress);
 
   progress.stage(0.9, "ordering the plunges");
   sequence(in, disks, out);
@@ -469,15 +534,15 @@ Plan plan(PlanInput in, const Progress& progress) {
                                    [](const Tool& t) { return std::isfinite(engagementLimit(t)); });
   if (limited) {
     progress.stage(0.92, "growing the cut within the engagement limits");
-    HeightField stock = stockOf(in, region);
-    out.plunges = growWithinLimits(in, region, depths, out.plunges, stock, progress);
+    HeightField stock = stockOf(in, pocket.region);
+    out.plunges = growWithinLimits(in, pocket.region, depths, out.plunges, stock, progress);
   }
   out.plunges = splitIntoLevels(in, out.plunges, out.stats);
-  coverageStats(in, region, core, limited ? coverOf(in, out, core) : cover, out);
-  planMotion(in, region, depths, out);
-  floorStock(in, region, *floor, out, progress);
+  coverageStats(in, pocket.region, pocket.core, limited ? coverOf(in, out, pocket.core) : cover, out);
+  planMotion(in, pocket.region, depths, out);
+  floorStock(in, pocket.region, *floor, out, progress);
   countPlunges(in, out);
-  out.stats.planningSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.stats.planningSeconds = secondsSince(t0);
   return out;
 }
 

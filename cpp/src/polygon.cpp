@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "clip.hpp"
+#include "detail.hpp"
 
 namespace plunge {
 namespace clip {
@@ -95,15 +96,11 @@ std::vector<Paths> components(const Paths& p) {
 }
 
 void bounds(const Paths& p, Vec2& lo, Vec2& hi) {
-  double inf = std::numeric_limits<double>::infinity();
-  lo = {inf, inf};
-  hi = {-inf, -inf};
+  detail::Bounds b;
   for (const Path& q : p)
-    for (const IntPoint& v : q) {
-      const Vec2 m = toMm(v);
-      lo = {std::min(lo.x, m.x), std::min(lo.y, m.y)};
-      hi = {std::max(hi.x, m.x), std::max(hi.y, m.y)};
-    }
+    for (const IntPoint& v : q) b.add(toMm(v));
+  lo = b.lo;
+  hi = b.hi;
 }
 
 }  // namespace clip

@@ -1,40 +1,26 @@
 #include "plunge/region.hpp"
 
 #include <algorithm>
-#include <boost/geometry.hpp>
-#include <boost/geometry/index/rtree.hpp>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
+#include "detail.hpp"
 #include "plunge/error.hpp"
-
-namespace bg = boost::geometry;
-namespace bgi = boost::geometry::index;
 
 namespace plunge {
 
-using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
-using BBox = bg::model::box<BPoint>;
-using BoxValue = std::pair<BBox, int>;
-using PointValue = std::pair<BPoint, int>;
+using namespace detail;
 
 // Distances asked about up to this (mm) query the walls in a box of that size.
 constexpr double kBoxReach = 50.0;
 
 struct Region::Index {
-  bgi::rtree<BoxValue, bgi::rstar<16>> walls;
-  bgi::rtree<PointValue, bgi::rstar<16>> reflex;
+  RStarTree<BoxValue> walls;
+  RStarTree<PointValue> reflex;
 };
 
 namespace {
-
-std::string fmt(Vec2 p) {
-  std::ostringstream s;
-  s.precision(6);
-  s << "(" << p.x << ", " << p.y << ")";
-  return s.str();
-}
 
 std::string loopName(size_t i) {
   return i == 0 ? std::string("boundary") : "island " + std::to_string(i);
@@ -53,21 +39,12 @@ Loop cleanLoop(const Loop& in, const std::string& name) {
   return out;
 }
 
-BBox boxOf(const Segment& s) {
-  return BBox(BPoint(std::min(s.a.x, s.b.x), std::min(s.a.y, s.b.y)),
-              BPoint(std::max(s.a.x, s.b.x), std::max(s.a.y, s.b.y)));
-}
-
 // Ray-casting parity of one loop (half-open rule).
 bool insideLoop(const Loop& loop, Vec2 p) {
   bool in = false;
   const size_t n = loop.size();
   for (size_t i = 0, j = n - 1; i < n; j = i++) {
-    const Vec2 a = loop[j], b = loop[i];
-    if ((a.y > p.y) != (b.y > p.y)) {
-      const double x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
-      if (x > p.x) in = !in;
-    }
+    if (crossesRay(loop[j], loop[i], p)) in = !in;
   }
   return in;
 }
@@ -131,17 +108,17 @@ Region::Region(const Loop& boundary, const std::vector<Loop>& islands) : index_(
         const bool folds = std::fabs(cross(d1, d2)) <= 1e-12 * norm(d1) * norm(d2) && dot(d1, d2) < 0.0;
         if (folds)
           throw Error(loopName(l1) + ": self-intersecting (the loop folds back on itself near " +
-                      fmt(j == i + 1 ? s1.b : s1.a) + ")");
+                      formatPoint(j == i + 1 ? s1.b : s1.a) + ")");
         continue;
       }
       if (!segmentsIntersect(s1, s2)) continue;
       Vec2 where = s1.a;
       if (auto x = intersectLines(s1.a, s1.b - s1.a, s2.a, s2.b - s2.a)) where = *x;
-      if (l1 == l2) throw Error(loopName(l1) + ": self-intersecting near " + fmt(where));
+      if (l1 == l2) throw Error(loopName(l1) + ": self-intersecting near " + formatPoint(where));
       if (l1 == 0 || l2 == 0)
-        throw Error(loopName(std::max(l1, l2)) + ": crosses or touches the boundary near " + fmt(where));
+        throw Error(loopName(std::max(l1, l2)) + ": crosses or touches the boundary near " + formatPoint(where));
       throw Error("islands " + std::to_string(l1) + " and " + std::to_string(l2) + " overlap near " +
-                  fmt(where));
+                  formatPoint(where));
     }
   }
   // No crossings: each island is wholly inside or wholly outside every other loop.
@@ -177,10 +154,7 @@ bool Region::contains(Vec2 p) const {
   bool in = false;
   for (auto it = index_->walls.qbegin(bgi::intersects(ray)); it != index_->walls.qend(); ++it) {
     const Segment& s = walls_[it->second];
-    if ((s.a.y > p.y) != (s.b.y > p.y)) {
-      const double x = s.a.x + (p.y - s.a.y) / (s.b.y - s.a.y) * (s.b.x - s.a.x);
-      if (x > p.x) in = !in;
-    }
+    if (crossesRay(s.a, s.b, p)) in = !in;
   }
   return in;
 }
@@ -203,14 +177,14 @@ double Region::wallDistance(Vec2 p, double within) const {
     if (seen < k || lastLower > best) return best;
     best = std::numeric_limits<double>::infinity();
   }
-  const BBox q(BPoint(p.x - within, p.y - within), BPoint(p.x + within, p.y + within));
+  const BBox q = boxAround(p, within);
   for (auto it = index_->walls.qbegin(bgi::intersects(q)); it != index_->walls.qend(); ++it)
     best = std::min(best, distanceToSegment(walls_[it->second], p));
   return best;
 }
 
 bool Region::nearestWallPoint(Vec2 p, double within, Vec2& point, double& distance, int* wall) const {
-  const BBox q(BPoint(p.x - within, p.y - within), BPoint(p.x + within, p.y + within));
+  const BBox q = boxAround(p, within);
   distance = std::numeric_limits<double>::infinity();
   for (auto it = index_->walls.qbegin(bgi::intersects(q)); it != index_->walls.qend(); ++it) {
     const Vec2 c = closestPointOnSegment(walls_[it->second], p);
@@ -260,14 +234,14 @@ std::vector<int> Region::nearestReflexVerticesNear(Vec2 p, double radius, size_t
 
 std::vector<int> Region::wallsInBox(Vec2 lo, Vec2 hi) const {
   std::vector<int> out;
-  const BBox q(BPoint(lo.x, lo.y), BPoint(hi.x, hi.y));
+  const BBox q = boxOf(lo, hi);
   for (auto it = index_->walls.qbegin(bgi::intersects(q)); it != index_->walls.qend(); ++it)
     out.push_back(it->second);
   return out;
 }
 
 std::vector<int> Region::reflexVerticesNear(Vec2 p, double radius) const {
-  const BBox q(BPoint(p.x - radius, p.y - radius), BPoint(p.x + radius, p.y + radius));
+  const BBox q = boxAround(p, radius);
   std::vector<int> out;
   for (auto it = index_->reflex.qbegin(bgi::intersects(q)); it != index_->reflex.qend(); ++it)
     out.push_back(it->second);

@@ -1,11 +1,11 @@
 #include "plunge/selection.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <optional>
 
 #include "plunge/covering.hpp"
 #include "plunge/error.hpp"
@@ -30,9 +30,9 @@ double estimateMinutes(const Plan& plan, const std::vector<Tool>& tools, double 
 
 namespace {
 
-std::string fmt(const char* f, double a, double b = 0, double c = 0, double d = 0) {
+std::string fmt(const char* f, double a, double b = 0, double c = 0, double d = 0, double e = 0) {
   char buf[256];
-  std::snprintf(buf, sizeof buf, f, a, b, c, d);
+  std::snprintf(buf, sizeof buf, f, a, b, c, d, e);
   return buf;
 }
 
@@ -50,33 +50,32 @@ std::string setName(const std::vector<double>& ds) {
   return s;
 }
 
-}  // namespace
+// The thesis's rule for the largest tool of a sub-region (5.1): this fraction of
+// its largest inscribed circle's diameter.
+constexpr double kInscribedFraction = 0.7;
 
-Plan planWithToolSelection(const PlanInput& input, const Progress& progress) {
-  const auto t0 = std::chrono::steady_clock::now();
-  PlanInput in = input;
-  in.tools = in.library;
-  validate(in);  // the library, largest first, and every other field
-  const std::vector<Tool> library = in.tools;
-  double tolerance = 0.0;  // large boundaries: the medial axis of simplified walls (limits.hpp)
-  const Region region = planningRegion(in, tolerance);
-
+// The pocket's shape as the choice sees it: inscribed circle, necks, sub-regions
+// and their order (5.5), each said in the reasoning.
+ToolSelection describePocket(const PlanInput& in, const Region& region) {
   ToolSelection sel;
   const MedialAxis axis = medialAxis(region);
   sel.inscribed = largestInscribedCircle(axis);
   sel.necks = findNecks(region, axis, in.selection.riseFactor);
   sel.parts = subdivide(region, axis, sel.necks);
   sel.order = subRegionOrder(sel.parts, in.start ? *in.start : in.boundary.front());
-  auto& why = sel.reasoning;
-  why.push_back(fmt("largest inscribed circle: diameter %.2f at (%.2f, %.2f)", 2 * sel.inscribed.r,
-                    sel.inscribed.c.x, sel.inscribed.c.y));
+  sel.reasoning.push_back(fmt("largest inscribed circle: diameter %.2f at (%.2f, %.2f)", 2 * sel.inscribed.r,
+                              sel.inscribed.c.x, sel.inscribed.c.y));
   for (size_t k = 0; k < sel.necks.size(); ++k) {
     const Neck& n = sel.necks[k];
-    why.push_back(fmt("neck %g: width %.2f at (%.2f, %.2f)", k + 1.0, n.width, n.center.x, n.center.y) +
-                  (n.island ? " (island neck)" : " (boundary neck)"));
+    sel.reasoning.push_back(fmt("neck %g: width %.2f at (%.2f, %.2f)", k + 1.0, n.width, n.center.x, n.center.y) +
+                            (n.island ? " (island neck)" : " (boundary neck)"));
   }
+  return sel;
+}
 
-  // 5.1 candidates, snapped down to the library.
+// 5.1 candidates, snapped down to the library (in.tools, largest first), largest first.
+std::vector<double> candidateTools(const PlanInput& in, ToolSelection& sel) {
+  const std::vector<Tool>& library = in.tools;
   const double smallest = library.back().diameter;
   std::vector<double> cand{smallest};
   auto add = [&](double d) {
@@ -84,10 +83,10 @@ Plan planWithToolSelection(const PlanInput& input, const Progress& progress) {
   };
   for (size_t i = 0; i < sel.parts.size(); ++i) {
     const SubRegion& s = sel.parts[i];
-    const double want = 0.7 * 2 * s.inscribed.r - 2 * in.radialAllowance;
+    const double want = kInscribedFraction * 2 * s.inscribed.r - 2 * in.radialAllowance;
     const double largest = snapDown(library, want);
-    std::string line = fmt("sub-region %g: area %.0f mm2, inscribed diameter %.2f; largest tool 0.7 x %.2f",
-                           i + 1.0, s.area, 2 * s.inscribed.r, 2 * s.inscribed.r);
+    std::string line = fmt("sub-region %g: area %.0f mm2, inscribed diameter %.2f; largest tool %g x %.2f", i + 1.0,
+                           s.area, 2 * s.inscribed.r, kInscribedFraction, 2 * s.inscribed.r);
     line += largest > 0 ? fmt(" -> %g", largest) : std::string(" -> none in the library");
     add(largest);
     // Beyond the thesis: packing fills the gaps between large disks with mid-size
@@ -105,95 +104,149 @@ Plan planWithToolSelection(const PlanInput& input, const Progress& progress) {
       line += fmt("; neck %g tool -> %g", k + 1.0, neck);
       add(neck);
     }
-    why.push_back(line);
+    sel.reasoning.push_back(line);
   }
   std::sort(cand.begin(), cand.end(), std::greater<double>());
-  sel.candidates = cand;
-  why.push_back("candidates: " + setName(cand) + fmt(" (the smallest, %g, is in every set: it decides what must be reached)", smallest));
+  sel.reasoning.push_back("candidates: " + setName(cand) +
+                          fmt(" (the smallest, %g, is in every set: it decides what must be reached)", smallest));
+  return cand;
+}
 
-  // 5.4 branch and bound over subsets of the other candidates, largest first.
-  std::vector<double> others(cand.begin(), cand.end() - 1);
-  const Polygons acc = accessibleRegion(region, 0.5 * smallest, in.radialAllowance);
-  const double accArea = poly::area(acc);
-  double perPlungeLB = std::numeric_limits<double>::infinity();  // minutes
-  const double zHigh = in.floor.kind == Floor::Kind::Flat ? in.floor.z + in.floorAllowance : in.topZ;
-  for (const Tool& t : library)
-    perPlungeLB = std::min(perPlungeLB, (in.safeZ - zHigh) * (1.0 / t.feed + 1.0 / in.timeModel.retractRate));
-  auto toolOf = [&](double d) {
-    for (const Tool& t : library)
+// 5.4 branch and bound over subsets of the candidates other than the smallest,
+// largest first; each set below the bound is planned with planSet.
+class ToolSetSearch {
+ public:
+  ToolSetSearch(const PlanInput& in, const Region& region, ToolSelection& sel, const ToolSetPlanner& planSet,
+                const Progress& progress)
+      : in_(in), sel_(sel), planSet_(planSet), progress_(progress), smallest_(sel.candidates.back()),
+        others_(sel.candidates.begin(), sel.candidates.end() - 1),
+        accArea_(poly::area(accessibleRegion(region, 0.5 * smallest_, in.radialAllowance))) {
+    // The fewest minutes one plunge can take: from the safe height to the highest
+    // the floor can be, at the fastest feed.
+    const double zHigh = in.floor.kind == Floor::Kind::Flat ? in.floor.z + in.floorAllowance : in.topZ;
+    for (const Tool& t : in.tools)
+      perPlungeLB_ = std::min(perPlungeLB_, (in.safeZ - zHigh) * (1.0 / t.feed + 1.0 / in.timeModel.retractRate));
+  }
+
+  // The best plan found; throws when none could be planned.
+  Plan run() {
+    search(0);
+    if (!bestPlan_) throw Error("tool selection: no tool set could be planned");
+    return std::move(*bestPlan_);
+  }
+  const std::vector<double>& chosen() const { return chosen_; }
+  size_t setCount() const { return size_t{1} << others_.size(); }
+
+ private:
+  void search(size_t i) {
+    const double lb = lowerBound(i);
+    if (lb >= best_) return prune(i, lb);
+    if (i == others_.size()) return evaluate();
+    included_.push_back(others_[i]);
+    search(i + 1);
+    included_.pop_back();
+    search(i + 1);
+  }
+
+  // Every set below this node has at least these tools, and no disk larger than
+  // the largest still possible.
+  double lowerBound(size_t i) const {
+    const double rBig =
+        0.5 * (!included_.empty() ? included_.front() : (i < others_.size() ? others_[i] : smallest_));
+    const double nTools = included_.size() + 1.0;
+    const TimeModel& m = in_.timeModel;
+    return in_.selection.weightTime *
+               (nTools * m.toolChangeSeconds / 60.0 + accArea_ / (M_PI * rBig * rBig) * perPlungeLB_) +
+           in_.selection.weightTools * nTools;
+  }
+
+  // Pruned: this set, and with every set adding smaller candidates when inside the tree.
+  void prune(size_t i, double lb) {
+    ToolSetResult r;
+    r.diameters = current();
+    r.subtree = i < others_.size();
+    r.minutes = r.weighted = lb;
+    sel_.sets.push_back(r);
+  }
+
+  void evaluate() {
+    ToolSetResult r;
+    r.diameters = current();
+    PlanInput sub = in_;
+    sub.autoTools = false;
+    sub.tools.clear();
+    for (double d : r.diameters) sub.tools.push_back(toolOf(d));
+    // The k-th planned set takes its share of the progress (at most 2^n sets).
+    const double share = 1.0 / static_cast<double>(setCount());
+    Plan p = planSet_(sub, progress_.sub(planned_ * share, (planned_ + 1) * share));
+    ++planned_;
+    r.evaluated = true;
+    r.plunges = p.stats.plungeCount;
+    r.coverage = p.stats.coverage;
+    r.minutes = p.stats.estimatedMinutes;
+    r.weighted = in_.selection.weightTime * r.minutes + in_.selection.weightTools * r.diameters.size();
+    sel_.sets.push_back(r);
+    if (r.weighted < best_) {
+      best_ = r.weighted;
+      chosen_ = r.diameters;
+      bestPlan_ = std::move(p);
+    }
+  }
+
+  std::vector<double> current() const {
+    std::vector<double> set = included_;
+    set.push_back(smallest_);
+    return set;
+  }
+
+  const Tool& toolOf(double d) const {
+    for (const Tool& t : in_.tools)
       if (t.diameter == d) return t;
-    return library.back();
-  };
-  const double wT = in.selection.weightTime, wN = in.selection.weightTools;
-  double best = std::numeric_limits<double>::infinity();
-  std::optional<Plan> bestPlan;
-  std::vector<double> chosen;
-  std::vector<double> included;
-  int planned = 0;  // tool sets planned so far, for the progress
-  std::function<void(size_t)> search = [&](size_t i) {
-    // Bound: every set below this node has at least these tools, and no disk
-    // larger than the largest still possible.
-    const double rBig = 0.5 * (!included.empty() ? included.front() : (i < others.size() ? others[i] : smallest));
-    const double nTools = included.size() + 1.0;
-    const double lb = wT * (nTools * in.timeModel.toolChangeSeconds / 60.0 + accArea / (M_PI * rBig * rBig) * perPlungeLB) +
-                      wN * nTools;
-    if (lb >= best) {  // pruned: this set, and with every set adding smaller candidates when inside the tree
-      ToolSetResult r;
-      r.diameters = included;
-      r.diameters.push_back(smallest);
-      r.subtree = i < others.size();
-      r.minutes = r.weighted = lb;
-      sel.sets.push_back(r);
-      return;
-    }
-    if (i == others.size()) {
-      std::vector<double> set = included;
-      set.push_back(smallest);
-      ToolSetResult r;
-      r.diameters = set;
-      PlanInput sub = in;
-      sub.autoTools = false;
-      sub.tools.clear();
-      for (double d : set) sub.tools.push_back(toolOf(d));
-      // The k-th planned set takes its share of the progress (at most 2^n sets).
-      const double share = 1.0 / std::ldexp(1.0, static_cast<int>(others.size()));
-      Plan p = plan(sub, progress.sub(planned * share, (planned + 1) * share));
-      ++planned;
-      r.evaluated = true;
-      r.plunges = p.stats.plungeCount;
-      r.coverage = p.stats.coverage;
-      r.minutes = p.stats.estimatedMinutes;
-      r.weighted = wT * r.minutes + wN * set.size();
-      sel.sets.push_back(r);
-      if (r.weighted < best) {
-        best = r.weighted;
-        chosen = set;
-        bestPlan = std::move(p);
-      }
-      return;
-    }
-    included.push_back(others[i]);
-    search(i + 1);
-    included.pop_back();
-    search(i + 1);
-  };
-  search(0);
-  if (!bestPlan) throw Error("tool selection: no tool set could be planned");
+    return in_.tools.back();
+  }
 
+  const PlanInput& in_;
+  ToolSelection& sel_;
+  const ToolSetPlanner& planSet_;
+  const Progress& progress_;
+  const double smallest_;
+  const std::vector<double> others_;
+  const double accArea_;
+  double perPlungeLB_ = std::numeric_limits<double>::infinity();  // minutes
+  double best_ = std::numeric_limits<double>::infinity();
+  std::optional<Plan> bestPlan_;
+  std::vector<double> chosen_;
+  std::vector<double> included_;
+  int planned_ = 0;  // tool sets planned so far, for the progress
+};
+
+// The search's outcome in the reasoning: every planned set and the choice.
+void reportSearch(const PlanInput& in, ToolSelection& sel, size_t setCount) {
   int evaluated = 0;
   for (const ToolSetResult& r : sel.sets) evaluated += r.evaluated;
-  why.push_back(fmt("branch and bound: %g of %g tool sets planned, the rest pruned by their lower bound",
-                    evaluated, std::pow(2.0, static_cast<double>(others.size()))));
+  sel.reasoning.push_back(fmt("branch and bound: %g of %g tool sets planned, the rest pruned by their lower bound",
+                              evaluated, static_cast<double>(setCount)));
   for (const ToolSetResult& r : sel.sets)
     if (r.evaluated)
-      why.push_back("  " + setName(r.diameters) + fmt(": %g plunges, coverage %.2f %%, %.1f min, weighted %.2f",
-                                                       r.plunges, 100 * r.coverage, r.minutes, r.weighted));
-  sel.chosen = chosen;
-  why.push_back("chosen: " + setName(chosen) + fmt(" (weights: time %g, tools %g)", wT, wN));
+      sel.reasoning.push_back("  " + setName(r.diameters) +
+                              fmt(": %g plunges, coverage %.2f %%, %.1f min, weighted %.2f", r.plunges,
+                                  100 * r.coverage, r.minutes, r.weighted));
+  sel.reasoning.push_back("chosen: " + setName(sel.chosen) +
+                          fmt(" (weights: time %g, tools %g)", in.selection.weightTime, in.selection.weightTools));
+}
 
-  Plan out = std::move(*bestPlan);
+}  // namespace
+
+Plan planWithToolSelection(const PlanInput& in, const ToolSetPlanner& planSet, const Progress& progress) {
+  double tolerance = 0.0;  // large boundaries: the medial axis of simplified walls (limits.hpp)
+  const Region region = planningRegion(in, tolerance);
+  ToolSelection sel = describePocket(in, region);
+  sel.candidates = candidateTools(in, sel);
+  ToolSetSearch search(in, region, sel, planSet, progress);
+  Plan out = search.run();
+  sel.chosen = search.chosen();
+  reportSearch(in, sel, search.setCount());
   out.selection = std::move(sel);
-  out.stats.planningSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
 

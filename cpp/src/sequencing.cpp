@@ -1,20 +1,18 @@
 #include "plunge/sequencing.hpp"
 
 #include <algorithm>
-#include <boost/geometry.hpp>
-#include <boost/geometry/index/rtree.hpp>
 #include <cmath>
 #include <deque>
 #include <limits>
 #include <numeric>
 #include <random>
 
+#include "detail.hpp"
 #include "plunge/error.hpp"
 
-namespace bg = boost::geometry;
-namespace bgi = boost::geometry::index;
-
 namespace plunge {
+
+using namespace detail;
 
 namespace {
 
@@ -32,12 +30,9 @@ class Tsp {
     dummy_ = open ? n_ : -1;
     start_ = startNode;
     if (open && startNode >= 0) {
-      Vec2 lo = pts[0], hi = pts[0];
-      for (const Vec2& p : pts) {
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-      }
-      big_ = (norm(hi - lo) + 1.0) * (n_ + 1);
+      Bounds b;
+      b.add(pts);
+      big_ = (norm(b.hi - b.lo) + 1.0) * (n_ + 1);
     }
     buildNeighbours();
   }
@@ -245,18 +240,16 @@ class Tsp {
 
  private:
   void buildNeighbours() {
-    using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
-    using Value = std::pair<BPoint, int>;
-    std::vector<Value> vals;
-    for (int i = 0; i < n_; ++i) vals.emplace_back(BPoint(pts_[i].x, pts_[i].y), i);
-    bgi::rtree<Value, bgi::rstar<16>> index(vals.begin(), vals.end());
+    std::vector<PointValue> vals;
+    for (int i = 0; i < n_; ++i) vals.emplace_back(toBPoint(pts_[i]), i);
+    RStarTree<PointValue> index(vals.begin(), vals.end());
     nb_.assign(m_, {});
     const int k = std::min(kNeighbours, n_ - 1);
     for (int i = 0; i < n_; ++i) {
-      std::vector<Value> hits;
-      index.query(bgi::nearest(BPoint(pts_[i].x, pts_[i].y), k + 1), std::back_inserter(hits));
+      std::vector<PointValue> hits;
+      index.query(bgi::nearest(toBPoint(pts_[i]), k + 1), std::back_inserter(hits));
       std::vector<int>& nb = nb_[i];
-      for (const Value& h : hits)
+      for (const PointValue& h : hits)
         if (h.second != i) nb.push_back(h.second);
       std::sort(nb.begin(), nb.end(), [&](int a, int b) {
         const double da = d(i, a), db = d(i, b);
@@ -412,12 +405,6 @@ std::vector<int> exhaustive(const std::vector<Vec2>& pts, bool closed, int start
 }
 
 }  // namespace
-
-TourMethod tourMethodFromName(const std::string& name) {
-  if (name == "local_search") return TourMethod::LocalSearch;
-  if (name == "annealing") return TourMethod::Annealing;
-  throw Error("sequencing: unknown method '" + name + "' (use \"local_search\" or \"annealing\")");
-}
 
 double tourLength(const std::vector<Vec2>& points, const std::vector<int>& order, bool closed) {
   double len = 0.0;

@@ -1,25 +1,18 @@
 #include "plunge/stock.hpp"
 
 #include <algorithm>
-#include <boost/geometry.hpp>
-#include <boost/geometry/index/rtree.hpp>
 #include <cmath>
 
+#include "detail.hpp"
 #include "plunge/error.hpp"
 
 namespace plunge {
 
+using namespace detail;
+
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr size_t kTargetSamples = 200000;
-
-namespace bg = boost::geometry;
-namespace bgi = boost::geometry::index;
-using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
-using BBox = bg::model::box<BPoint>;
-using BoxValue = std::pair<BBox, int>;
 
 // x moved away from the walls closer than `clearance` (a few steps: corners).
 Vec2 pushOffWalls(const Region& region, Vec2 x, double clearance) {
@@ -210,15 +203,12 @@ double wallStockLeft(const Region& region, const std::vector<Loop>& uncovered, c
   for (const Loop& L : accessible)
     for (size_t i = 0, j = L.size() - 1; i < L.size(); j = i++) {
       edges.push_back({L[j], L[i]});
-      boxes.emplace_back(BBox(BPoint(std::min(L[j].x, L[i].x), std::min(L[j].y, L[i].y)),
-                              BPoint(std::max(L[j].x, L[i].x), std::max(L[j].y, L[i].y))),
-                         static_cast<int>(edges.size() - 1));
+      boxes.emplace_back(boxOf(edges.back()), static_cast<int>(edges.size() - 1));
     }
-  const bgi::rtree<BoxValue, bgi::quadratic<16>> index(boxes.begin(), boxes.end());
+  const QuadraticTree<BoxValue> index(boxes.begin(), boxes.end());
   constexpr double onOutline = 1e-3;
   auto onAccessibleOutline = [&](Vec2 p) {
-    const BBox b(BPoint(p.x - onOutline, p.y - onOutline), BPoint(p.x + onOutline, p.y + onOutline));
-    for (auto it = index.qbegin(bgi::intersects(b)); it != index.qend(); ++it)
+    for (auto it = index.qbegin(bgi::intersects(boxAround(p, onOutline))); it != index.qend(); ++it)
       if (distanceToSegment(edges[it->second], p) <= onOutline) return true;
     return false;
   };

@@ -57,5 +57,8 @@ TEST(Grid, BadOptions) {
   GridOptions o;
   o.step = 1.5;
   EXPECT_THROW(gridPlacements(region, {5}, o), Error);
-  EXPECT_THROW(gridPatternFromName("hexagon"), Error);
+  o.step = -0.1;
+  EXPECT_THROW(gridPlacements(region, {5}, o), Error);
+  o.step = NAN;
+  EXPECT_THROW(gridPlacements(region, {5}, o), Error);
 }

@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -72,6 +76,64 @@ TEST(Io, BadInputNamesTheProblem) {
             std::string::npos);
   EXPECT_NE(parseError(withChange("/islands/0/0", json::array({140, 20}))).find("island 1: crosses"), std::string::npos);
   EXPECT_EQ(parseError(base().dump()), "");
+}
+
+TEST(Io, OptionsAreParsedByName) {
+  json j = base();
+  j["strategy"] = "grid";
+  j["packing_order"] = "lattice";
+  j["sequencing"] = "annealing";
+  j["grid"] = {{"pattern", "square"}, {"step", 0.5}};
+  const PlanInput in = planInputFromJson(j.dump());
+  EXPECT_EQ(in.strategy, Strategy::Grid);
+  EXPECT_EQ(in.packingOrder, PackingOrder::Lattice);
+  EXPECT_EQ(in.sequencing, TourMethod::Annealing);
+  EXPECT_EQ(in.gridPattern, GridPattern::Square);
+  const PlanInput defaults = planInputFromJson(withChange("/strategy", json::value_t::discarded));
+  EXPECT_EQ(defaults.strategy, Strategy::Packing);
+  EXPECT_EQ(defaults.packingOrder, PackingOrder::Auto);
+  EXPECT_EQ(defaults.sequencing, TourMethod::LocalSearch);
+  EXPECT_EQ(defaults.gridPattern, GridPattern::Honeycomb);
+  // Unknown names: the key, the name and every accepted one.
+  EXPECT_EQ(parseError(withChange("/strategy", "spiral")),
+            "strategy: unknown strategy 'spiral' (use \"packing\" or \"grid\")");
+  EXPECT_EQ(parseError(withChange("/packing_order", "random")),
+            "packing_order: unknown order 'random' (use \"auto\", \"hole_degree\" or \"lattice\")");
+  EXPECT_EQ(parseError(withChange("/sequencing", "genetic")),
+            "sequencing: unknown method 'genetic' (use \"local_search\" or \"annealing\")");
+  EXPECT_EQ(parseError(withChange("/grid", {{"pattern", "hexagon"}})),
+            "grid.pattern: unknown pattern 'hexagon' (use \"square\" or \"honeycomb\")");
+  EXPECT_EQ(parseError(withChange("/strategy", 3)), "strategy: expected a string");
+  EXPECT_THROW(tourMethodFromName("genetic"), Error);  // plunge.tour's method too
+}
+
+TEST(Io, RelativePathsStartAtTheInputFilesFolder) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("plunge-io-test-" + std::to_string(::getpid()));
+  fs::create_directories(dir / "job");
+  json j = base();
+  j["floor"] = {{"brep", "floor.brep"}};
+  std::ofstream(dir / "job" / "in.json") << j.dump();
+  const PlanInput in = readPlanInput((dir / "job" / "in.json").string());
+  EXPECT_EQ(fs::path(resolveInputPath(in, "floor.brep")), dir / "job" / "floor.brep");
+  EXPECT_EQ(resolveInputPath(in, "/abs/floor.brep"), "/abs/floor.brep");
+  // From a relative file name: still that file's folder, whatever the current directory.
+  const fs::path here = fs::current_path();
+  fs::current_path(dir);
+  const PlanInput rel = readPlanInput("job/in.json");
+  fs::current_path(here);
+  EXPECT_EQ(fs::path(resolveInputPath(rel, "floor.brep")), dir / "job" / "floor.brep");
+  // Parsed from text there is no file: the current directory.
+  EXPECT_EQ(resolveInputPath(planInputFromJson(j.dump()), "floor.brep"), "floor.brep");
+  EXPECT_NE(parseError(j.dump()).find("floor.brep"), std::string::npos);
+  try {
+    readPlanInput((dir / "missing.json").string());
+    ADD_FAILURE() << "a missing file was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot read"), std::string::npos);
+  }
+  EXPECT_THROW(readPlanInput(dir.string()), Error);  // a folder
+  fs::remove_all(dir);
 }
 
 TEST(Io, JsonOutputFollowsTheContract) {

@@ -2,6 +2,7 @@
 
 #include "plunge/error.hpp"
 #include "plunge/io.hpp"
+#include "plunge/limits.hpp"
 #include "plunge/plan.hpp"
 #include "testutil.hpp"
 
@@ -84,8 +85,11 @@ TEST(Plan, RejectsBadNumbers) {
   in.floorAllowance = INFINITY;
   EXPECT_NE(planError(in).find("allowance.floor"), std::string::npos);
   in = square();
-  in.strategy = "spiral";
-  EXPECT_NE(planError(in).find("strategy"), std::string::npos);
+  in.gridStep = 1.5;
+  EXPECT_NE(planError(in).find("grid.step must be 0"), std::string::npos);
+  in = square();
+  in.tools[0].id = kMaxToolId + 1;  // io refuses it too; validate() for callers of the library
+  EXPECT_NE(planError(in).find("tools[0].id must be a positive integer"), std::string::npos);
   in = square();
   in.minCoverage = 1.5;
   EXPECT_NE(planError(in).find("min_coverage"), std::string::npos);
@@ -130,7 +134,7 @@ TEST_P(Shapes, InvariantsHold) {
   EXPECT_TRUE(p.warnings.empty());
   // The band's point: fewer plunges than the honeycomb grid of the same tools.
   PlanInput grid = in;
-  grid.strategy = "grid";
+  grid.strategy = Strategy::Grid;
   EXPECT_LT(p.stats.plungeCount, plan(grid).stats.plungeCount);
   // No band: today's covering down to min_coverage.
   in.maxWallStock = 0.0;
@@ -198,7 +202,7 @@ TEST(Plan, CoverageShortfallIsAWarning) {
   EXPECT_NE(planToJson(short_).find("\"warnings\""), std::string::npos);
   // The grid baseline short of the target warns the same way.
   in.minCoverage = 0.996;
-  in.strategy = "grid";
+  in.strategy = Strategy::Grid;
   const Plan grid = plan(in);
   ASSERT_LT(grid.stats.coverage, in.minCoverage);
   ASSERT_EQ(grid.warnings.size(), 1u);

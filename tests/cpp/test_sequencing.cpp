@@ -116,5 +116,4 @@ TEST(Sequencing, DegenerateInput) {
   EXPECT_THROW(tour({{0, 0}, {NAN, 1}}), Error);
   EXPECT_THROW(tour({{0, 0}, {1, INFINITY}}), Error);
   EXPECT_THROW(tour({{0, 0}}, true, Vec2{INFINITY, 0}), Error);
-  EXPECT_THROW(tourMethodFromName("genetic"), Error);
 }

@@ -17,7 +17,6 @@
 namespace plunge {
 
 enum class GridPattern { Square, Honeycomb };
-GridPattern gridPatternFromName(const std::string& name);  // throws plunge::Error
 
 struct GridOptions {
   GridPattern pattern = GridPattern::Honeycomb;
@@ -30,6 +29,8 @@ struct GridOptions {
   Progress progress;  // checked per grid row
 };
 
+// Throws plunge::Error unless step is 0 or in (0, 1] (GridOptions::step).
+void checkGridStep(double step);
 // radii: tool radii (any order). Same result type as the covering.
 CoverResult gridPlacements(const Region& region, const std::vector<double>& radii, const GridOptions& options);
 

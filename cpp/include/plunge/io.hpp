@@ -9,6 +9,15 @@ namespace plunge {
 
 // Parses and checks the JSON input; throws plunge::Error naming the bad field.
 PlanInput planInputFromJson(const std::string& text);
+// The same from a file; a relative floor.brep then starts at the file's folder.
+PlanInput readPlanInput(const std::string& path);
+
+// The input's options by their JSON names; each throws plunge::Error naming the
+// key and the names it accepts.
+Strategy strategyFromName(const std::string& name);         // "strategy"
+PackingOrder packingOrderFromName(const std::string& name);  // "packing_order"
+TourMethod tourMethodFromName(const std::string& name);      // "sequencing"
+GridPattern gridPatternFromName(const std::string& name);    // "grid": {"pattern"}
 std::string planToJson(const Plan& plan);
 // The pocket, its islands, every plunge disk coloured by tool, the tool paths,
 // what is left uncovered (red) and a legend (tool, count, coverage, travel).

@@ -17,6 +17,8 @@ namespace plunge {
 constexpr double kMaxLength = 1e5;
 // A milling tool's diameter, mm.
 constexpr double kMaxToolDiameter = 1000.0;
+// Tool numbers (G-code T words) run from 1 to this.
+constexpr int kMaxToolId = 1000000;
 // Boundary and island vertices together.
 constexpr size_t kMaxVertices = 1000000;
 // Boundaries with more vertices plan on walls simplified within at most

@@ -32,6 +32,9 @@ enum class PackingOrder {
   // the thinnest covering lattice instead of breaking into patches whose holes
   // each cost a gap plunge.
   Lattice,
+  // Both, in parallel, keeping the plan with fewer plunges: a choice of the plan
+  // pipeline (plan.cpp); packMaxHoleDegree itself takes HoleDegree or Lattice.
+  Auto,
 };
 
 struct PackingOptions {

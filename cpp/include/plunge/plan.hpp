@@ -8,9 +8,12 @@
 
 #include "plunge/depth.hpp"
 #include "plunge/geometry.hpp"
+#include "plunge/grid.hpp"
+#include "plunge/packing.hpp"
 #include "plunge/progress.hpp"
 #include "plunge/region.hpp"
 #include "plunge/selection.hpp"
+#include "plunge/sequencing.hpp"
 
 namespace plunge {
 
@@ -28,11 +31,14 @@ struct Tool {
   double fluteLength = 0.0;    // "flute_length": deepest cut in one plunge, mm
 };
 
+// "strategy": pack and cover (the thesis) or a fixed grid (grid.hpp).
+enum class Strategy { Packing, Grid };
+
 struct Floor {
   enum class Kind { Flat, Expression, Brep } kind = Kind::Flat;
   double z = 0.0;
   std::string expression;
-  std::string brep;  // a BREP file; relative paths start at PlanInput::baseDir
+  std::string brep;  // a BREP file; a relative path starts at PlanInput::baseDir (resolveInputPath)
 };
 
 struct PlanInput {
@@ -44,23 +50,25 @@ struct PlanInput {
   Floor floor;
   double radialAllowance = 0.0;
   double floorAllowance = 0.0;
-  std::string strategy = "packing";
+  Strategy strategy = Strategy::Packing;
   std::uint64_t seed = 0;
   // Extensions beyond the contract (all optional in JSON):
   double minCoverage = 0.996;  // "min_coverage": stop covering wall material here
   double contactRatio = 0.86;  // "contact_ratio": packing tangency radius / tool radius
   // "packing_order": "hole_degree" (the thesis), "lattice", or "auto": both, keep the better plan.
-  std::string packingOrder = "auto";
+  PackingOrder packingOrder = PackingOrder::Auto;
   std::optional<Vec2> start;   // "start": where the machine starts (default: first boundary point)
-  std::string sequencing = "local_search";  // "sequencing": or "annealing" (the thesis)
-  std::string baseDir;  // where a relative floor.brep path starts (the CLI: the input file's folder)
+  TourMethod sequencing = TourMethod::LocalSearch;  // "sequencing": or "annealing" (the thesis)
+  // Where a relative floor.brep path starts: the input file's folder when read
+  // from a file (readPlanInput), otherwise (empty) the current directory.
+  std::string baseDir;
   // "tools": "auto": the plungers are chosen from `library` ("tool_library").
   bool autoTools = false;
   std::vector<Tool> library;
   SelectionOptions selection;  // "selection": {"weight_time", "weight_tools", "rise_factor"}
   TimeModel timeModel;         // "time_model": {"rapid_rate", "retract_rate", "tool_change_seconds"}
   // "strategy": "grid" with "grid": {"pattern": "honeycomb" | "square", "step": fraction of the diameter}.
-  std::string gridPattern = "honeycomb";
+  GridPattern gridPattern = GridPattern::Honeycomb;
   double gridStep = 0.0;
   // Stock left for the finisher (stock.hpp): "max_wall_stock", mm beyond the
   // radial allowance: every point farther from the walls is cut (0: cover down
@@ -77,6 +85,9 @@ struct PlanInput {
   double rapidClearance = 1.0;
   // "max_plunges": refuse inputs estimated to need more (limits.hpp).
   double maxPlunges = 200000;
+  // "final_depth": no plunge stops below final_depth + the floor allowance
+  // (FreeCAD: the operation's final depth; absent: the floor alone decides).
+  std::optional<double> finalDepth;
 };
 
 struct Plunge {
@@ -160,10 +171,22 @@ Cutter cutterOf(const Tool& tool);
 // A plunge of the tool at c stopping at z.
 Plunge plungeOf(const Tool& tool, Vec2 c, double z);
 
-// Checks every number and option of the input; throws plunge::Error naming the problem.
+// Checks every number of the input (its options are enums, parsed by io.hpp)
+// and sorts the tools largest first; throws plunge::Error naming the problem.
 void validate(PlanInput& input);
 
-// progress: told how far planning got, and able to cancel it (progress.hpp).
+// A path of the input (floor.brep) as the planner opens it: absolute, or relative
+// to input.baseDir (the current directory when that is empty).
+std::string resolveInputPath(const PlanInput& input, const std::string& path);
+
+// The whole pipeline: validate, then the automatic tool choice (selection.hpp)
+// or planWithTools. progress: told how far planning got, and able to cancel it
+// (progress.hpp).
 Plan plan(PlanInput input, const Progress& progress = Progress());
+
+// The plan of a validated input with its tools given (tools, not "auto"):
+// region, packing and covering (or the grid), depths, rest step, sequencing,
+// engagement limits, levels, motion and the stock left.
+Plan planWithTools(PlanInput input, const Progress& progress = Progress());
 
 }  // namespace plunge

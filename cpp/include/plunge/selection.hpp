@@ -14,11 +14,12 @@
 // 5.5 sub-regions ordered by a minimum spanning tree (reported; the plunges of
 //     each tool are then toured over the whole pocket, which is never longer).
 #pragma once
-#include "plunge/progress.hpp"
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "plunge/medial.hpp"
+#include "plunge/progress.hpp"
 
 namespace plunge {
 
@@ -63,7 +64,14 @@ struct ToolSelection {
   std::vector<std::string> reasoning;
 };
 
-// Plans with the tool set chosen from input.library; the plan carries the selection.
-Plan planWithToolSelection(const PlanInput& input, const Progress& progress = Progress());
+// Plans one tool set: an input with its tools given (plan.hpp's planWithTools
+// after validating it).
+using ToolSetPlanner = std::function<Plan(PlanInput, const Progress&)>;
+
+// Chooses the plungers from input.tools (the validated library, largest first):
+// every tool set the search reaches is planned with planSet, the best plan is
+// returned carrying the selection.
+Plan planWithToolSelection(const PlanInput& input, const ToolSetPlanner& planSet,
+                           const Progress& progress = Progress());
 
 }  // namespace plunge

@@ -20,8 +20,6 @@ enum class TourMethod {
   Annealing,    // the thesis: simulated annealing on 2-opt moves
 };
 
-// "local_search" or "annealing"; throws plunge::Error for anything else.
-TourMethod tourMethodFromName(const std::string& name);
 
 struct TourOptions {
   TourMethod method = TourMethod::LocalSearch;

@@ -1,0 +1,85 @@
+// Internal: small helpers the modules share (not installed, not part of the API).
+#pragma once
+#include <algorithm>
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include "plunge/geometry.hpp"
+
+namespace plunge::detail {
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Feasibility slack, mm: a disk may come this much nearer a wall or another disk
+// than it should (rounding of tangent constructions).
+constexpr double kTol = 1e-9;
+
+// "(x, y)" for messages.
+inline std::string formatPoint(const double* x, int dimensions, int digits = 6) {
+  std::ostringstream s;
+  s.precision(digits);
+  s << "(";
+  for (int i = 0; i < dimensions; ++i) s << (i ? ", " : "") << x[i];
+  s << ")";
+  return s.str();
+}
+inline std::string formatPoint(Vec2 p) {
+  const double x[2] = {p.x, p.y};
+  return formatPoint(x, 2);
+}
+
+// An axis-aligned bounding box grown point by point (empty: lo above hi).
+struct Bounds {
+  Vec2 lo{kInf, kInf};
+  Vec2 hi{-kInf, -kInf};
+  void add(Vec2 p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  }
+  void add(const Loop& loop) {
+    for (Vec2 p : loop) add(p);
+  }
+  bool empty() const { return lo.x > hi.x; }
+};
+
+// Where segment a-b crosses the horizontal line at y, by the half-open rule (a
+// vertex on the line counts for one of its two segments): the base of every
+// ray-casting and scan-line test.
+inline std::optional<double> crossingX(Vec2 a, Vec2 b, double y) {
+  if ((a.y > y) == (b.y > y)) return std::nullopt;
+  return a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x);
+}
+// Does segment a-b cross the ray from p towards +x?
+inline bool crossesRay(Vec2 a, Vec2 b, Vec2 p) {
+  const std::optional<double> x = crossingX(a, b, p.y);
+  return x && *x > p.x;
+}
+
+// Boost.Geometry R-trees of boxes or points, each with an index into the caller's list.
+using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
+using BBox = bg::model::box<BPoint>;
+using BoxValue = std::pair<BBox, int>;
+using PointValue = std::pair<BPoint, int>;
+template <class Value>
+using RStarTree = bgi::rtree<Value, bgi::rstar<16>>;
+// Quadratic splitting where GCC 12 reports a false maybe-uninitialized in rstar's insertion.
+template <class Value>
+using QuadraticTree = bgi::rtree<Value, bgi::quadratic<16>>;
+
+inline BPoint toBPoint(Vec2 p) { return BPoint(p.x, p.y); }
+inline BBox boxOf(const Segment& s) {
+  return BBox(BPoint(std::min(s.a.x, s.b.x), std::min(s.a.y, s.b.y)),
+              BPoint(std::max(s.a.x, s.b.x), std::max(s.a.y, s.b.y)));
+}
+inline BBox boxOf(Vec2 lo, Vec2 hi) { return BBox(BPoint(lo.x, lo.y), BPoint(hi.x, hi.y)); }
+inline BBox boxAround(Vec2 c, double r) { return BBox(BPoint(c.x - r, c.y - r), BPoint(c.x + r, c.y + r)); }
+
+}  // namespace plunge::detail
