@@ -204,76 +204,17 @@ class ObjectPlungeRough(PathOp.ObjectOp):
     def opExecute(self, obj):
         obj.PlanData = ""
         tcs = _tool_controllers(obj)
-        # With the automatic choice the operation itself takes the largest plunger
-        # the plan uses (below); otherwise its tool controller is the largest.
-        if tcs and obj.ToolController != tcs[0] and not (obj.AutoSelectTools and obj.ToolController in tcs):
-            _report(obj, translate("PlungeRough", "the operation's tool controller must be its largest plunger (%s)")
-                    % tcs[0].Label)
+        try:
+            faces = selected_faces(obj, tcs)
+        except ValueError as e:
+            _report(obj, str(e))
             return
-        faces = []
-        for base, subs in obj.Base:
-            for sub in subs:
-                if not sub.startswith("Face"):
-                    _report(obj, translate("PlungeRough", "%s.%s is not a face: select the pocket's floor face")
-                            % (base.Label, sub))
-                    return
-                faces.append(("%s.%s" % (base.Label, sub), base.Shape.getElement(sub)))
         if not faces:
             obj.Summary = translate("PlungeRough", "select the pocket's floor face")
             return
-        diameters = [float(tc.Tool.Diameter) for tc in tcs]
-        if len(set(diameters)) != len(diameters):
-            _report(obj, translate("PlungeRough", "two plunger tool controllers have the same diameter"))
-            return
-        # Each further plunger cuts through its companion operation: without it
-        # its plunges would silently be missing from the simulation and G-code.
-        have = {comp.ToolController for comp in companions(obj)}
-        missing = [tc for tc in tcs[1:] if tc not in have]
-        if missing:
-            _report(obj, translate("PlungeRough", "the operation of plunger %s was deleted, so its plunges would not "
-                                   "be cut: untick it in the plunger list (or tick it again)")
-                    % ", ".join(tc.Label for tc in missing))
-            return
+        workdir = plan_folder(obj)
         try:
-            boundary, islands, deviation = geometry.footprint(faces, obj.ChordTolerance.Value)
-            workdir = os.path.join(tempfile.gettempdir(), "plungerough-%s-%s" % (obj.Document.Name, obj.Name))
-            os.makedirs(workdir, exist_ok=True)
-            floor = geometry.floor_spec(faces, obj.FinalDepth.Value, workdir)
-            data = {
-                "version": 1,
-                "boundary": boundary,
-                "islands": islands,
-                "tools": [geometry.tool_spec(tc, obj.MaxEngagement, obj.MinEngagement) for tc in tcs],
-                # Rapids and retracts at the first plunger's rapid rates, as the post runs them.
-                "time_model": time_model(tcs[0]),
-                "top_z": obj.StartDepth.Value,
-                "safe_z": obj.SafeHeight.Value,
-                "floor": floor,
-                # The chords of a discretised free-form wall may lie off it by the
-                # measured deviation: keeping that much more from the walls never gouges.
-                "allowance": {"radial": obj.RadialAllowance.Value + deviation + 1e-6,
-                              "floor": obj.FloorAllowance.Value},
-                "min_coverage": obj.MinCoverage / 100.0,
-                "max_wall_stock": obj.MaxWallStock.Value,
-                "max_floor_stock": obj.MaxFloorStock.Value,
-                # Lead-out and stock-aware heights are explicit moves: a canned cycle has neither.
-                "lead_out": 0.0 if obj.UseCannedCycle else obj.LeadOut.Value,
-                "stock_aware_heights": bool(obj.StockAwareHeights and not obj.UseCannedCycle),
-            }
-            depth = obj.StartDepth.Value - obj.FinalDepth.Value
-            for tc in tcs:
-                length = geometry.bit_length(tc.Tool, "Length")
-                if length and length < depth:
-                    raise ValueError("%s is %g mm long, shorter than the pocket is deep (%g mm): use a longer tool"
-                                     % (tc.Label, length, depth))
-            if obj.SafeHeight.Value > obj.ClearanceHeight.Value:
-                raise ValueError("the safe height is above the clearance height")
-            if obj.StartDepth.Value <= obj.FinalDepth.Value:
-                raise ValueError("the start depth must be above the final depth")
-            data.update(STRATEGIES.get(obj.Strategy, {}))
-            if obj.AutoSelectTools:
-                data["tool_library"] = data.pop("tools")
-                data["tools"] = "auto"
+            data = build_input(obj, tcs, faces, workdir)
             progress = PlanProgress(obj.Label)
             try:
                 plan = planner().plan(data, svg=True, progress=progress)
@@ -285,50 +226,148 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         except _ABORT:  # FreeCAD's progress indicator: the user aborted (Esc)
             _report(obj, translate("PlungeRough", "planning cancelled"))
             return
-        # FinalDepth is the deepest any plunge goes (the approach and retract stay above it).
-        for p in plan["plunges"]:
-            p["z"] = max(p["z"], obj.FinalDepth.Value + obj.FloorAllowance.Value)
-            p["approach_z"] = max(p["approach_z"], p["z"])
-            p["retract_z"] = max(p["retract_z"], p["z"])
-        picture = plan.pop("svg")
-        obj.PlanData = json.dumps({"input": data, "plan": plan})
         with open(os.path.join(workdir, "plan.svg"), "w") as f:
-            f.write(picture)
-        warnings = list(plan.get("warnings", []))
-        post_warning = canned_cycle_warning(obj)
-        if post_warning:
-            warnings.append(post_warning)
-        obj.Summary = summary(dict(plan, warnings=warnings))
-        FreeCAD.Console.PrintMessage("%s: %s\n" % (obj.Label, stock_report(plan["stats"])))
-        for warning in warnings:
-            FreeCAD.Console.PrintWarning("%s: %s\n" % (obj.Label, warning))
-        # Automatic choice: this operation cuts with the largest plunger the plan
-        # uses; the companions of unused plungers, and the one of that plunger,
-        # stay idle, so the post writes no tool change without plunges after it.
-        used = {p["tool_id"] for p in plan["plunges"]}
-        own_tc = tcs[0]
-        if obj.AutoSelectTools:
-            own_tc = next((tc for tc in tcs if int(tc.ToolNumber) in used), tcs[0])
-            if obj.ToolController != own_tc:
-                obj.ToolController = own_tc
-        # Start holes: every one is drilled by its companion, placed before this operation.
-        drilling = {p["tool_id"] for p in plan["plunges"] if p.get("start_hole")}
-        holes_by = {int(c.ToolController.ToolNumber) for c in companions(obj) if getattr(c, "StartHoles", False)}
-        if drilling - holes_by:
-            _report(obj, translate("PlungeRough", "the plan drills start holes with T%s, which has no start hole "
-                                   "operation: tick the plungers again") % ", T".join(str(t) for t in drilling - holes_by))
+            f.write(plan.pop("svg"))
+        obj.PlanData = json.dumps({"input": data, "plan": plan})
+        report_plan(obj, plan)
+        own_tc = activate_companions(obj, plan, tcs)
+        if own_tc is None:
             obj.PlanData = ""
             return
-        for comp in companions(obj):
-            if getattr(comp, "StartHoles", False):
-                active = int(comp.ToolController.ToolNumber) in drilling
-            else:
-                active = not obj.AutoSelectTools or (int(comp.ToolController.ToolNumber) in used
-                                                     and comp.ToolController != own_tc)
-            if comp.Active != active:
-                comp.Active = active
         self.commandlist.extend(toolCommands(obj, plunges_of_tool(plan, own_tc)))
         PathFeedRate.setFeedRate(self.commandlist, own_tc)
+
+
+def selected_faces(obj, tcs):
+    """The selected floor faces as (name, face); ValueError naming what stops the
+    operation from planning: its tool controllers, an edge selected, a deleted companion."""
+    # With the automatic choice the operation itself takes the largest plunger
+    # the plan uses (activate_companions); otherwise its tool controller is the largest.
+    if tcs and obj.ToolController != tcs[0] and not (obj.AutoSelectTools and obj.ToolController in tcs):
+        raise ValueError(translate("PlungeRough", "the operation's tool controller must be its largest plunger (%s)")
+                         % tcs[0].Label)
+    faces = []
+    for base, subs in obj.Base:
+        for sub in subs:
+            if not sub.startswith("Face"):
+                raise ValueError(translate("PlungeRough", "%s.%s is not a face: select the pocket's floor face")
+                                 % (base.Label, sub))
+            faces.append(("%s.%s" % (base.Label, sub), base.Shape.getElement(sub)))
+    if not faces:
+        return faces
+    diameters = [float(tc.Tool.Diameter) for tc in tcs]
+    if len(set(diameters)) != len(diameters):
+        raise ValueError(translate("PlungeRough", "two plunger tool controllers have the same diameter"))
+    # Each further plunger cuts through its companion operation: without it
+    # its plunges would silently be missing from the simulation and G-code.
+    have = {comp.ToolController for comp in companions(obj)}
+    missing = [tc for tc in tcs[1:] if tc not in have]
+    if missing:
+        raise ValueError(translate("PlungeRough", "the operation of plunger %s was deleted, so its plunges would "
+                                   "not be cut: untick it in the plunger list (or tick it again)")
+                         % ", ".join(tc.Label for tc in missing))
+    return faces
+
+
+def check_settings(obj, tcs):
+    """ValueError for heights and bits the planner cannot be given."""
+    depth = obj.StartDepth.Value - obj.FinalDepth.Value
+    for tc in tcs:
+        length = geometry.bit_length(tc.Tool, "Length")
+        if length and length < depth:
+            raise ValueError("%s is %g mm long, shorter than the pocket is deep (%g mm): use a longer tool"
+                             % (tc.Label, length, depth))
+    if obj.SafeHeight.Value > obj.ClearanceHeight.Value:
+        raise ValueError("the safe height is above the clearance height")
+    if obj.StartDepth.Value <= obj.FinalDepth.Value:
+        raise ValueError("the start depth must be above the final depth")
+
+
+def build_input(obj, tcs, faces, workdir):
+    """The planner's input (docs/plan-format.md) for the operation's properties,
+    its plunger tool controllers (largest first) and its floor faces. Writes
+    nothing but a sculptured floor's BREP into workdir; ValueError names a bad
+    setting or face."""
+    boundary, islands, deviation = geometry.footprint(faces, obj.ChordTolerance.Value)
+    check_settings(obj, tcs)
+    data = {
+        "version": 1,
+        "boundary": boundary,
+        "islands": islands,
+        "tools": [geometry.tool_spec(tc, obj.MaxEngagement, obj.MinEngagement) for tc in tcs],
+        # Rapids and retracts at the first plunger's rapid rates, as the post runs them.
+        "time_model": time_model(tcs[0]),
+        "top_z": obj.StartDepth.Value,
+        "safe_z": obj.SafeHeight.Value,
+        "floor": geometry.floor_spec(faces, obj.FinalDepth.Value, workdir),
+        # FinalDepth is the deepest any plunge goes.
+        "final_depth": obj.FinalDepth.Value,
+        # The chords of a discretised free-form wall may lie off it by the
+        # measured deviation: keeping that much more from the walls never gouges.
+        "allowance": {"radial": obj.RadialAllowance.Value + deviation + 1e-6,
+                      "floor": obj.FloorAllowance.Value},
+        "min_coverage": obj.MinCoverage / 100.0,
+        "max_wall_stock": obj.MaxWallStock.Value,
+        "max_floor_stock": obj.MaxFloorStock.Value,
+        # Lead-out and stock-aware heights are explicit moves: a canned cycle has neither.
+        "lead_out": 0.0 if obj.UseCannedCycle else obj.LeadOut.Value,
+        "stock_aware_heights": bool(obj.StockAwareHeights and not obj.UseCannedCycle),
+    }
+    data.update(STRATEGIES.get(obj.Strategy, {}))
+    if obj.AutoSelectTools:
+        data["tool_library"] = data.pop("tools")
+        data["tools"] = "auto"
+    return data
+
+
+def plan_folder(obj, create=True):
+    """The operation's own folder for its floor BREP and plan picture."""
+    workdir = os.path.join(tempfile.gettempdir(), "plungerough-%s-%s" % (obj.Document.Name, obj.Name))
+    if create:
+        os.makedirs(workdir, exist_ok=True)
+    return workdir
+
+
+def report_plan(obj, plan):
+    """The plan's summary on the operation, its stock and warnings in the report view."""
+    warnings = list(plan.get("warnings", []))
+    post_warning = canned_cycle_warning(obj)
+    if post_warning:
+        warnings.append(post_warning)
+    obj.Summary = summary(dict(plan, warnings=warnings))
+    FreeCAD.Console.PrintMessage("%s: %s\n" % (obj.Label, stock_report(plan["stats"])))
+    for warning in warnings:
+        FreeCAD.Console.PrintWarning("%s: %s\n" % (obj.Label, warning))
+
+
+def activate_companions(obj, plan, tcs):
+    """The tool controller the operation itself cuts with; the companions that
+    have plunges to make active, the others idle (so the post writes no tool
+    change without plunges after it). None after reporting a plan that drills
+    start holes no companion makes."""
+    used = {p["tool_id"] for p in plan["plunges"]}
+    own_tc = tcs[0]
+    # Automatic choice: this operation cuts with the largest plunger the plan uses.
+    if obj.AutoSelectTools:
+        own_tc = next((tc for tc in tcs if int(tc.ToolNumber) in used), tcs[0])
+        if obj.ToolController != own_tc:
+            obj.ToolController = own_tc
+    # Start holes: every one is drilled by its companion, placed before this operation.
+    drilling = {p["tool_id"] for p in plan["plunges"] if p.get("start_hole")}
+    holes_by = {int(c.ToolController.ToolNumber) for c in companions(obj) if getattr(c, "StartHoles", False)}
+    if drilling - holes_by:
+        _report(obj, translate("PlungeRough", "the plan drills start holes with T%s, which has no start hole "
+                               "operation: tick the plungers again") % ", T".join(str(t) for t in drilling - holes_by))
+        return None
+    for comp in companions(obj):
+        if getattr(comp, "StartHoles", False):
+            active = int(comp.ToolController.ToolNumber) in drilling
+        else:
+            active = not obj.AutoSelectTools or (int(comp.ToolController.ToolNumber) in used
+                                                 and comp.ToolController != own_tc)
+        if comp.Active != active:
+            comp.Active = active
+    return own_tc
 
 
 # What FreeCAD's progress indicator raises when the user aborts (not an Exception).
@@ -470,7 +509,7 @@ def plan_of(obj):
 
 def plan_picture(obj):
     """Path of the SVG picture of the operation's last plan."""
-    return os.path.join(tempfile.gettempdir(), "plungerough-%s-%s" % (obj.Document.Name, obj.Name), "plan.svg")
+    return os.path.join(plan_folder(obj, create=False), "plan.svg")
 
 
 def companions(obj):

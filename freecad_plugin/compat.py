@@ -22,7 +22,6 @@ def _first(*names):
 
 
 PathOp = _first("Path.Op.Base", "PathScripts.PathOp")
-PathLog = _first("Path.Log", "PathScripts.PathLog")
 PathUtils = _first("PathScripts.PathUtils")
 PathJob = _first("Path.Main.Job", "PathScripts.PathJob")
 PathToolController = _first("Path.Tool.Controller", "PathScripts.PathToolController")

@@ -233,12 +233,28 @@ class Coverer {
     crumb_ = core_ ? 0.004 : 0.01 * rMin_ * rMin_;
   }
 
+  // Phases: the material the packing leaves, its Delaunay gaps (4.2.2), every
+  // piece's candidates, then the greedy covering (4.2.3) of the core or down
+  // to min_coverage.
   CoverResult run(const std::vector<PackedDisk>& packed) {
     const Polygons acc = accessibleRegion(region_, rMin_, opt_.allowance);
+    const Polygons core = materialLeft(acc, packed);
+    coverDelaunayGaps(packed);
+    generateAllCandidates();
+    if (core_)
+      coverCore(acc, core);
+    else
+      coverToMinCoverage(acc);
+    return std::move(result_);
+  }
+
+ private:
+  // The pieces of material the packed disks leave (of the core, with a band);
+  // returns the core (empty without a band).
+  Polygons materialLeft(const Polygons& acc, const std::vector<PackedDisk>& packed) {
     accessible_ = clip::toPaths(acc);
     result_.accessibleArea = clip::area(accessible_);
     buildBoundaryIndex();
-
     std::vector<Circle> circles;
     for (const PackedDisk& d : packed) {
       result_.disks.push_back({d.center, d.radius, d.tool, Stage::Packing});
@@ -258,22 +274,27 @@ class Coverer {
     // planner counts as cut is cut, so no sliver of the core survives the real disks.
     const clip::Paths left = core_ ? subtractDisks(toCover, circles, false) : subtractDisks(accessible_, circles, true);
     for (clip::Paths& c : clip::components(left)) addPiece(std::move(c));
+    return core;
+  }
 
-    coverDelaunayGaps(packed);
+  void generateAllCandidates() {
     generating_ = true;
     for (size_t i = 0; i < pieces_.size(); ++i) {
       opt_.progress.tick();
       if (pieces_[i].alive) generateCandidates(static_cast<int>(i));
     }
-    // With a band: the core whole (measured as planned, with inscribed disks).
-    if (core_) {
-      coverResidual(0.0);
-      measure(acc);
-      result_.coreUncovered = uncoveredRegion(core, diskCircles());
-      return std::move(result_);
-    }
-    // The greedy counts with circumscribed disks; the measurement is conservative.
-    // Where the two disagree about the target, cover a little more.
+  }
+
+  // With a band: the core whole (measured as planned, with inscribed disks).
+  void coverCore(const Polygons& acc, const Polygons& core) {
+    coverResidual(0.0);
+    measure(acc);
+    result_.coreUncovered = uncoveredRegion(core, diskCircles());
+  }
+
+  // The greedy counts with circumscribed disks; the measurement is conservative.
+  // Where the two disagree about the target, cover a little more.
+  void coverToMinCoverage(const Polygons& acc) {
     double target = opt_.minCoverage * result_.accessibleArea;
     for (int round = 0;; ++round) {
       coverResidual(target);
@@ -282,10 +303,8 @@ class Coverer {
       if (shortBy <= 0.0 || round == 4) break;
       target += shortBy + 1e-4 * result_.accessibleArea;
     }
-    return std::move(result_);
   }
 
- private:
   std::vector<Circle> diskCircles() const {
     std::vector<Circle> all;
     for (const CoverDisk& d : result_.disks) all.push_back({d.center, d.radius});

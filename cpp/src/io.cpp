@@ -149,6 +149,106 @@ void checkObject(const json& j, const char* key, const std::set<std::string>& ke
 
 }  // namespace
 
+namespace {
+
+void readTools(const json& j, PlanInput& in) {
+  if (j.contains("tools") && j["tools"].is_string() && j["tools"].get<std::string>() == "auto") {
+    in.autoTools = true;
+    if (!j.contains("tool_library")) throw Error("tool_library: required with \"tools\": \"auto\"");
+    in.library = toolList(j["tool_library"], "tool_library");
+    return;
+  }
+  if (!j.contains("tools") || !j["tools"].is_array())
+    throw Error("tools: expected a list of {\"diameter\": ...} or \"auto\" with a tool_library");
+  if (j.contains("tool_library")) throw Error("tool_library: only with \"tools\": \"auto\"");
+  in.tools = toolList(j["tools"], "tools");
+}
+
+Floor readFloor(const json& j) {
+  if (!j.contains("floor") || !j["floor"].is_object()) throw Error("floor: required, e.g. {\"z\": -10}");
+  const json& f = j["floor"];
+  onlyKeys(f, {"z", "expression", "brep"}, "floor: ");
+  if (f.size() != 1) throw Error("floor: give exactly one of z, expression, brep");
+  Floor floor;
+  if (f.contains("z")) {
+    floor.kind = Floor::Kind::Flat;
+    floor.z = number(f["z"], "floor.z");
+  } else if (f.contains("expression")) {
+    floor.kind = Floor::Kind::Expression;
+    floor.expression = stringOf(f["expression"], "floor.expression");
+  } else {
+    if (!f["brep"].is_string()) throw Error("floor.brep: expected a file name");
+    floor.kind = Floor::Kind::Brep;
+    floor.brep = f["brep"].get<std::string>();
+  }
+  return floor;
+}
+
+// The objects of options: allowance, selection, time_model, grid.
+void readOptionObjects(const json& j, PlanInput& in) {
+  if (j.contains("allowance")) {
+    const json& a = j["allowance"];
+    if (!a.is_object()) throw Error("allowance: expected {\"radial\": ..., \"floor\": ...}");
+    onlyKeys(a, {"radial", "floor"}, "allowance: ");
+    if (a.contains("radial")) in.radialAllowance = number(a["radial"], "allowance.radial");
+    if (a.contains("floor")) in.floorAllowance = number(a["floor"], "allowance.floor");
+  }
+  if (j.contains("selection")) {
+    checkObject(j, "selection", {"weight_time", "weight_tools", "rise_factor"});
+    const json& o = j["selection"];
+    if (o.contains("weight_time")) in.selection.weightTime = number(o["weight_time"], "selection.weight_time");
+    if (o.contains("weight_tools")) in.selection.weightTools = number(o["weight_tools"], "selection.weight_tools");
+    if (o.contains("rise_factor")) in.selection.riseFactor = number(o["rise_factor"], "selection.rise_factor");
+  }
+  if (j.contains("time_model")) {
+    checkObject(j, "time_model", {"rapid_rate", "retract_rate", "tool_change_seconds"});
+    const json& o = j["time_model"];
+    if (o.contains("rapid_rate")) in.timeModel.rapidRate = number(o["rapid_rate"], "time_model.rapid_rate");
+    if (o.contains("retract_rate")) in.timeModel.retractRate = number(o["retract_rate"], "time_model.retract_rate");
+    if (o.contains("tool_change_seconds"))
+      in.timeModel.toolChangeSeconds = number(o["tool_change_seconds"], "time_model.tool_change_seconds");
+  }
+  if (j.contains("grid")) {
+    checkObject(j, "grid", {"pattern", "step"});
+    const json& o = j["grid"];
+    if (o.contains("pattern")) in.gridPattern = gridPatternFromName(stringOf(o["pattern"], "grid.pattern"));
+    if (o.contains("step")) in.gridStep = number(o["step"], "grid.step");
+  }
+}
+
+// The top-level numbers, flags and named options.
+void readScalars(const json& j, PlanInput& in) {
+  const std::pair<const char*, double*> numbers[] = {
+      {"top_z", &in.topZ},
+      {"safe_z", &in.safeZ},
+      {"min_coverage", &in.minCoverage},
+      {"max_wall_stock", &in.maxWallStock},
+      {"max_floor_stock", &in.maxFloorStock},
+      {"lead_out", &in.leadOut},
+      {"rapid_clearance", &in.rapidClearance},
+      {"max_plunges", &in.maxPlunges},
+      {"contact_ratio", &in.contactRatio}};
+  for (const auto& [key, value] : numbers)
+    if (j.contains(key)) *value = number(j[key], key);
+  if (j.contains("final_depth")) in.finalDepth = number(j["final_depth"], "final_depth");
+  if (j.contains("stock_aware_heights")) {
+    if (!j["stock_aware_heights"].is_boolean()) throw Error("stock_aware_heights: expected true or false");
+    in.stockAwareHeights = j["stock_aware_heights"].get<bool>();
+  }
+  if (j.contains("seed")) {
+    if (!j["seed"].is_number_integer() || j["seed"].get<long long>() < 0)
+      throw Error("seed: expected a non-negative integer");
+    in.seed = j["seed"].get<std::uint64_t>();
+  }
+  if (j.contains("start")) in.start = point(j["start"], "start");
+  if (j.contains("strategy")) in.strategy = strategyFromName(stringOf(j["strategy"], "strategy"));
+  if (j.contains("packing_order"))
+    in.packingOrder = packingOrderFromName(stringOf(j["packing_order"], "packing_order"));
+  if (j.contains("sequencing")) in.sequencing = tourMethodFromName(stringOf(j["sequencing"], "sequencing"));
+}
+
+}  // namespace
+
 PlanInput planInputFromJson(const std::string& text) {
   json j;
   try {
@@ -174,84 +274,10 @@ PlanInput planInputFromJson(const std::string& text) {
     if (!is.is_array()) throw Error("islands: expected a list of polylines");
     for (size_t i = 0; i < is.size(); ++i) in.islands.push_back(loop(is[i], "islands[" + std::to_string(i) + "]"));
   }
-  if (j.contains("tools") && j["tools"].is_string() && j["tools"].get<std::string>() == "auto") {
-    in.autoTools = true;
-    if (!j.contains("tool_library")) throw Error("tool_library: required with \"tools\": \"auto\"");
-    in.library = toolList(j["tool_library"], "tool_library");
-  } else {
-    if (!j.contains("tools") || !j["tools"].is_array())
-      throw Error("tools: expected a list of {\"diameter\": ...} or \"auto\" with a tool_library");
-    if (j.contains("tool_library")) throw Error("tool_library: only with \"tools\": \"auto\"");
-    in.tools = toolList(j["tools"], "tools");
-  }
-  if (j.contains("top_z")) in.topZ = number(j["top_z"], "top_z");
-  if (j.contains("safe_z")) in.safeZ = number(j["safe_z"], "safe_z");
-  if (!j.contains("floor") || !j["floor"].is_object()) throw Error("floor: required, e.g. {\"z\": -10}");
-  const json& f = j["floor"];
-  onlyKeys(f, {"z", "expression", "brep"}, "floor: ");
-  if (f.size() != 1) throw Error("floor: give exactly one of z, expression, brep");
-  if (f.contains("z")) {
-    in.floor.kind = Floor::Kind::Flat;
-    in.floor.z = number(f["z"], "floor.z");
-  } else if (f.contains("expression")) {
-    if (!f["expression"].is_string()) throw Error("floor.expression: expected a string");
-    in.floor.kind = Floor::Kind::Expression;
-    in.floor.expression = f["expression"].get<std::string>();
-  } else {
-    if (!f["brep"].is_string()) throw Error("floor.brep: expected a file name");
-    in.floor.kind = Floor::Kind::Brep;
-    in.floor.brep = f["brep"].get<std::string>();
-  }
-  if (j.contains("allowance")) {
-    const json& a = j["allowance"];
-    if (!a.is_object()) throw Error("allowance: expected {\"radial\": ..., \"floor\": ...}");
-    onlyKeys(a, {"radial", "floor"}, "allowance: ");
-    if (a.contains("radial")) in.radialAllowance = number(a["radial"], "allowance.radial");
-    if (a.contains("floor")) in.floorAllowance = number(a["floor"], "allowance.floor");
-  }
-  if (j.contains("strategy")) in.strategy = strategyFromName(stringOf(j["strategy"], "strategy"));
-  if (j.contains("seed")) {
-    if (!j["seed"].is_number_integer() || j["seed"].get<long long>() < 0)
-      throw Error("seed: expected a non-negative integer");
-    in.seed = j["seed"].get<std::uint64_t>();
-  }
-  if (j.contains("min_coverage")) in.minCoverage = number(j["min_coverage"], "min_coverage");
-  if (j.contains("max_wall_stock")) in.maxWallStock = number(j["max_wall_stock"], "max_wall_stock");
-  if (j.contains("max_floor_stock")) in.maxFloorStock = number(j["max_floor_stock"], "max_floor_stock");
-  if (j.contains("lead_out")) in.leadOut = number(j["lead_out"], "lead_out");
-  if (j.contains("rapid_clearance")) in.rapidClearance = number(j["rapid_clearance"], "rapid_clearance");
-  if (j.contains("max_plunges")) in.maxPlunges = number(j["max_plunges"], "max_plunges");
-  if (j.contains("final_depth")) in.finalDepth = number(j["final_depth"], "final_depth");
-  if (j.contains("stock_aware_heights")) {
-    if (!j["stock_aware_heights"].is_boolean()) throw Error("stock_aware_heights: expected true or false");
-    in.stockAwareHeights = j["stock_aware_heights"].get<bool>();
-  }
-  if (j.contains("contact_ratio")) in.contactRatio = number(j["contact_ratio"], "contact_ratio");
-  if (j.contains("packing_order"))
-    in.packingOrder = packingOrderFromName(stringOf(j["packing_order"], "packing_order"));
-  if (j.contains("sequencing")) in.sequencing = tourMethodFromName(stringOf(j["sequencing"], "sequencing"));
-  if (j.contains("start")) in.start = point(j["start"], "start");
-  if (j.contains("selection")) {
-    checkObject(j, "selection", {"weight_time", "weight_tools", "rise_factor"});
-    const json& o = j["selection"];
-    if (o.contains("weight_time")) in.selection.weightTime = number(o["weight_time"], "selection.weight_time");
-    if (o.contains("weight_tools")) in.selection.weightTools = number(o["weight_tools"], "selection.weight_tools");
-    if (o.contains("rise_factor")) in.selection.riseFactor = number(o["rise_factor"], "selection.rise_factor");
-  }
-  if (j.contains("time_model")) {
-    checkObject(j, "time_model", {"rapid_rate", "retract_rate", "tool_change_seconds"});
-    const json& o = j["time_model"];
-    if (o.contains("rapid_rate")) in.timeModel.rapidRate = number(o["rapid_rate"], "time_model.rapid_rate");
-    if (o.contains("retract_rate")) in.timeModel.retractRate = number(o["retract_rate"], "time_model.retract_rate");
-    if (o.contains("tool_change_seconds"))
-      in.timeModel.toolChangeSeconds = number(o["tool_change_seconds"], "time_model.tool_change_seconds");
-  }
-  if (j.contains("grid")) {
-    checkObject(j, "grid", {"pattern", "step"});
-    const json& o = j["grid"];
-    if (o.contains("pattern")) in.gridPattern = gridPatternFromName(stringOf(o["pattern"], "grid.pattern"));
-    if (o.contains("step")) in.gridStep = number(o["step"], "grid.step");
-  }
+  readTools(j, in);
+  in.floor = readFloor(j);
+  readOptionObjects(j, in);
+  readScalars(j, in);
   return in;
 }
 
@@ -409,109 +435,172 @@ std::string stockMapSvg(const StockMap& m, double limit) {
 
 }  // namespace
 
-std::string planToSvg(const PlanInput& input, const Plan& plan) {
-  detail::Bounds box;
-  box.add(input.boundary);
-  const Vec2 lo = box.lo, hi = box.hi;
-  const double w = hi.x - lo.x, h = hi.y - lo.y;
-  const double size = std::max(w, h);
-  const double margin = 0.04 * size;
-  const double sw = size / 900.0;  // stroke width
-  const double legendH = 0.05 * size * (3 + plan.stats.perTool.size() + (plan.stockMap ? 1 : 0));
-  const double vx = lo.x - margin, vy = -hi.y - margin - legendH, vw = w + 2 * margin, vh = h + 2 * margin + legendH;
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(3);
-  const double pxW = 1200.0, pxH = pxW * vh / vw;
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << pxW << "\" height=\"" << pxH << "\" viewBox=\"" << vx
-    << " " << vy << " " << vw << " " << vh << "\">\n";
-  s << "<rect x=\"" << vx << "\" y=\"" << vy << "\" width=\"" << vw << "\" height=\"" << vh << "\" fill=\"white\"/>\n";
-  Polygons pocket{input.boundary};
-  for (const Loop& L : input.islands) pocket.push_back(L);
-  s << "<path d=\"" << pathData(pocket) << "\" fill=\"#e8e8e8\" fill-rule=\"evenodd\" stroke=\"#222\" stroke-width=\""
-    << 2 * sw << "\"/>\n";
-  for (const Loop& L : input.islands)
-    s << "<path d=\"" << pathData({L}) << "\" fill=\"#9a9a9a\" stroke=\"#222\" stroke-width=\"" << 2 * sw << "\"/>\n";
-  s << "<path d=\"" << pathData(plan.accessible) << "\" fill=\"none\" stroke=\"#555\" stroke-dasharray=\"" << 4 * sw
-    << "\" stroke-width=\"" << sw << "\"/>\n";
-  std::map<int, int> colour;  // tool id -> palette slot
-  for (const ToolCount& t : plan.stats.perTool) colour.emplace(t.toolId, static_cast<int>(colour.size()));
-  // The stock map's colour scale: yellow at the limit (1 mm when none is set).
-  const double stockScale = input.maxFloorStock > 0.0 ? input.maxFloorStock : 1.0;
-  if (plan.stockMap) s << stockMapSvg(*plan.stockMap, stockScale);
-  const char* fillOpacity = plan.stockMap ? "0.06" : "0.22";  // the stock map shows through
-  for (const Plunge& p : plan.plunges) {
-    const char* c = kPalette[colour[p.toolId] % 8];
-    s << "<circle cx=\"" << p.x << "\" cy=\"" << -p.y << "\" r=\"" << p.diameter / 2 << "\" fill=\"" << c
-      << "\" fill-opacity=\"" << fillOpacity << "\" stroke=\"" << c << "\" stroke-width=\"" << sw << "\"/>\n";
+namespace {
+
+// The plan's picture, layer by layer (planToSvg); y is drawn downwards.
+class SvgPicture {
+ public:
+  SvgPicture(const PlanInput& input, const Plan& plan) : in_(input), plan_(plan) {
+    detail::Bounds box;
+    box.add(input.boundary);
+    lo_ = box.lo;
+    hi_ = box.hi;
+    size_ = std::max(hi_.x - lo_.x, hi_.y - lo_.y);
+    sw_ = size_ / 900.0;
+    fs_ = 0.032 * size_;
+    for (const ToolCount& t : plan.stats.perTool) colour_.emplace(t.toolId, static_cast<int>(colour_.size()));
+    // The stock map's colour scale: yellow at the limit (1 mm when none is set).
+    stockScale_ = input.maxFloorStock > 0.0 ? input.maxFloorStock : 1.0;
+    for (const Plunge& p : plan.plunges) {
+      zLo_ = std::min(zLo_, p.z);
+      zHi_ = std::max(zHi_, p.z);
+    }
+    depthDots_ = !plan.plunges.empty() && zHi_ - zLo_ > 1e-9;
+    s_ << std::fixed << std::setprecision(3);
   }
-  // Tool paths: one polyline per tool, in execution order.
-  for (const ToolCount& t : plan.stats.perTool) {
-    s << "<polyline fill=\"none\" stroke=\"" << kPathPalette[colour[t.toolId] % 8] << "\" stroke-width=\"" << 1.5 * sw
-      << "\" stroke-opacity=\"0.9\" points=\"";
-    for (const Plunge& p : plan.plunges)
-      if (p.toolId == t.toolId) s << p.x << "," << -p.y << " ";
-    s << "\"/>\n";
+
+  std::string draw() {
+    frame();
+    pocket();
+    plunges();
+    marks();
+    legend();
+    s_ << "</svg>\n";
+    return s_.str();
   }
-  if (!plan.uncovered.empty())
-    s << "<path d=\"" << pathData(plan.uncovered) << "\" fill=\"#e00000\" fill-rule=\"nonzero\" stroke=\"none\"/>\n";
-  // Automatic tool choice: the neck lines the pocket was subdivided along.
-  if (plan.selection)
-    for (const Neck& n : plan.selection->necks)
-      s << "<line x1=\"" << n.a.x << "\" y1=\"" << -n.a.y << "\" x2=\"" << n.b.x << "\" y2=\"" << -n.b.y
-        << "\" stroke=\"#d000d0\" stroke-width=\"" << 3 * sw << "\" stroke-dasharray=\"" << 6 * sw << "\"/>\n";
-  // Depths over a sculptured floor: a dot at each plunge, dark (deep) to light (high).
-  double zLo = INFINITY, zHi = -INFINITY;
-  for (const Plunge& p : plan.plunges) {
-    zLo = std::min(zLo, p.z);
-    zHi = std::max(zHi, p.z);
+
+ private:
+  void frame() {
+    const double w = hi_.x - lo_.x, h = hi_.y - lo_.y, margin = 0.04 * size_;
+    legendH_ = 0.05 * size_ * (3 + plan_.stats.perTool.size() + (plan_.stockMap ? 1 : 0));
+    const double vx = lo_.x - margin, vy = -hi_.y - margin - legendH_, vw = w + 2 * margin,
+                 vh = h + 2 * margin + legendH_;
+    const double pxW = 1200.0, pxH = pxW * vh / vw;
+    s_ << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << pxW << "\" height=\"" << pxH << "\" viewBox=\""
+       << vx << " " << vy << " " << vw << " " << vh << "\">\n";
+    s_ << "<rect x=\"" << vx << "\" y=\"" << vy << "\" width=\"" << vw << "\" height=\"" << vh
+       << "\" fill=\"white\"/>\n";
   }
-  const bool depthDots = !plan.plunges.empty() && zHi - zLo > 1e-9;
-  auto depthColour = [&](double z) {
-    const double t = (z - zLo) / (zHi - zLo);
+
+  // The pocket, its islands and the accessible region's outline (dashed).
+  void pocket() {
+    Polygons all{in_.boundary};
+    for (const Loop& L : in_.islands) all.push_back(L);
+    s_ << "<path d=\"" << pathData(all) << "\" fill=\"#e8e8e8\" fill-rule=\"evenodd\" stroke=\"#222\" stroke-width=\""
+       << 2 * sw_ << "\"/>\n";
+    for (const Loop& L : in_.islands)
+      s_ << "<path d=\"" << pathData({L}) << "\" fill=\"#9a9a9a\" stroke=\"#222\" stroke-width=\"" << 2 * sw_
+         << "\"/>\n";
+    s_ << "<path d=\"" << pathData(plan_.accessible) << "\" fill=\"none\" stroke=\"#555\" stroke-dasharray=\""
+       << 4 * sw_ << "\" stroke-width=\"" << sw_ << "\"/>\n";
+  }
+
+  // The stock map under the disks, each disk, then each tool's path in execution order.
+  void plunges() {
+    if (plan_.stockMap) s_ << stockMapSvg(*plan_.stockMap, stockScale_);
+    const char* fillOpacity = plan_.stockMap ? "0.06" : "0.22";  // the stock map shows through
+    for (const Plunge& p : plan_.plunges) {
+      const char* c = kPalette[colour_[p.toolId] % 8];
+      s_ << "<circle cx=\"" << p.x << "\" cy=\"" << -p.y << "\" r=\"" << p.diameter / 2 << "\" fill=\"" << c
+         << "\" fill-opacity=\"" << fillOpacity << "\" stroke=\"" << c << "\" stroke-width=\"" << sw_ << "\"/>\n";
+    }
+    for (const ToolCount& t : plan_.stats.perTool) {
+      s_ << "<polyline fill=\"none\" stroke=\"" << kPathPalette[colour_[t.toolId] % 8] << "\" stroke-width=\""
+         << 1.5 * sw_ << "\" stroke-opacity=\"0.9\" points=\"";
+      for (const Plunge& p : plan_.plunges)
+        if (p.toolId == t.toolId) s_ << p.x << "," << -p.y << " ";
+      s_ << "\"/>\n";
+    }
+  }
+
+  // What is left uncovered (red), the necks of an automatic tool choice, and
+  // over a sculptured floor a dot at each plunge, dark (deep) to light (high).
+  void marks() {
+    if (!plan_.uncovered.empty())
+      s_ << "<path d=\"" << pathData(plan_.uncovered)
+         << "\" fill=\"#e00000\" fill-rule=\"nonzero\" stroke=\"none\"/>\n";
+    if (plan_.selection)
+      for (const Neck& n : plan_.selection->necks)
+        s_ << "<line x1=\"" << n.a.x << "\" y1=\"" << -n.a.y << "\" x2=\"" << n.b.x << "\" y2=\"" << -n.b.y
+           << "\" stroke=\"#d000d0\" stroke-width=\"" << 3 * sw_ << "\" stroke-dasharray=\"" << 6 * sw_ << "\"/>\n";
+    if (depthDots_)
+      for (const Plunge& p : plan_.plunges)
+        s_ << "<rect x=\"" << p.x - 0.12 * p.diameter << "\" y=\"" << -p.y - 0.12 * p.diameter << "\" width=\""
+           << 0.24 * p.diameter << "\" height=\"" << 0.24 * p.diameter << "\" fill=\"" << depthColour(p.z)
+           << "\"/>\n";
+  }
+
+  std::string depthColour(double z) const {
+    const double t = (z - zLo_) / (zHi_ - zLo_);
     std::ostringstream c;
     c << "rgb(" << static_cast<int>(30 + 225 * t) << "," << static_cast<int>(20 + 200 * t) << ","
       << static_cast<int>(90 + 40 * (1 - t)) << ")";
     return c.str();
-  };
-  if (depthDots)
-    for (const Plunge& p : plan.plunges)
-      s << "<rect x=\"" << p.x - 0.12 * p.diameter << "\" y=\"" << -p.y - 0.12 * p.diameter << "\" width=\""
-        << 0.24 * p.diameter << "\" height=\"" << 0.24 * p.diameter << "\" fill=\"" << depthColour(p.z) << "\"/>\n";
-  // Legend.
-  const double fs = 0.032 * size;
-  double y = -hi.y - legendH + fs * 0.5;
-  s << std::setprecision(2);
-  s << "<text x=\"" << lo.x << "\" y=\"" << y + fs << "\" font-family=\"sans-serif\" font-size=\"" << fs << "\">"
-    << plan.stats.plungeCount << " plunges, " << 100.0 * plan.stats.coverage << " % covered (red: left), travel "
-    << plan.stats.travelLength << " mm</text>\n";
-  y += 1.4 * fs;
-  for (const ToolCount& t : plan.stats.perTool) {
-    const char* c = kPalette[colour[t.toolId] % 8];
-    s << "<circle cx=\"" << lo.x + fs * 0.5 << "\" cy=\"" << y + fs * 0.6 << "\" r=\"" << fs * 0.45 << "\" fill=\"" << c
-      << "\" fill-opacity=\"0.5\" stroke=\"" << c << "\"  stroke-width=\"" << sw << "\"/>\n";
-    s << "<text x=\"" << lo.x + fs * 1.4 << "\" y=\"" << y + fs << "\" font-family=\"sans-serif\" font-size=\"" << fs
-      << "\">T" << t.toolId << " D" << t.diameter << ": " << t.count << " plunges</text>\n";
-    y += 1.4 * fs;
   }
-  if (plan.stockMap) {
-    for (int k = 0; k <= 4; ++k)
-      s << "<rect x=\"" << lo.x + k * fs << "\" y=\"" << y + 0.2 * fs << "\" width=\"" << fs << "\" height=\"" << 0.8 * fs
-        << "\" fill=\"" << stockColour(0.5 * k * stockScale, stockScale) << "\"/>\n";
-    s << "<text x=\"" << lo.x + fs * 5.4 << "\" y=\"" << y + fs << "\" font-family=\"sans-serif\" font-size=\"" << fs
-      << "\">floor stock, " << (input.maxFloorStock > 0.0 ? "limit " : "yellow ") << stockScale << ": max "
-      << plan.stats.maxFloorStockLeft << " mm</text>\n";
-    y += 1.4 * fs;
+
+  void text(double x, double y, const std::string& what) {
+    s_ << "<text x=\"" << x << "\" y=\"" << y << "\" font-family=\"sans-serif\" font-size=\"" << fs_ << "\">" << what
+       << "</text>\n";
   }
-  if (depthDots) {
-    s << "<rect x=\"" << lo.x << "\" y=\"" << y + 0.2 * fs << "\" width=\"" << fs << "\" height=\"" << 0.8 * fs
-      << "\" fill=\"" << depthColour(zLo) << "\"/><rect x=\"" << lo.x + fs << "\" y=\"" << y + 0.2 * fs
-      << "\" width=\"" << fs << "\" height=\"" << 0.8 * fs << "\" fill=\"" << depthColour(zHi) << "\"/>\n";
-    s << "<text x=\"" << lo.x + fs * 2.4 << "\" y=\"" << y + fs << "\" font-family=\"sans-serif\" font-size=\"" << fs
-      << "\">stop height " << zLo << " (dark) to " << zHi << " mm</text>\n";
+
+  std::string number(double v) const {
+    std::ostringstream t;
+    t << std::fixed << std::setprecision(2) << v;
+    return t.str();
   }
-  s << "</svg>\n";
-  return s.str();
-}
+
+  void swatch(double x, double y, const std::string& fill) {
+    s_ << "<rect x=\"" << x << "\" y=\"" << y + 0.2 * fs_ << "\" width=\"" << fs_ << "\" height=\"" << 0.8 * fs_
+       << "\" fill=\"" << fill << "\"/>";
+  }
+
+  // Counts, then a line per tool, the stock map's scale and the depth dots' scale.
+  void legend() {
+    double y = -hi_.y - legendH_ + fs_ * 0.5;
+    s_ << std::setprecision(2);
+    text(lo_.x, y + fs_,
+         std::to_string(plan_.stats.plungeCount) + " plunges, " + number(100.0 * plan_.stats.coverage) +
+             " % covered (red: left), travel " + number(plan_.stats.travelLength) + " mm");
+    y += 1.4 * fs_;
+    for (const ToolCount& t : plan_.stats.perTool) {
+      const char* c = kPalette[colour_[t.toolId] % 8];
+      s_ << "<circle cx=\"" << lo_.x + fs_ * 0.5 << "\" cy=\"" << y + fs_ * 0.6 << "\" r=\"" << fs_ * 0.45
+         << "\" fill=\"" << c << "\" fill-opacity=\"0.5\" stroke=\"" << c << "\"  stroke-width=\"" << sw_ << "\"/>\n";
+      text(lo_.x + fs_ * 1.4, y + fs_,
+           "T" + std::to_string(t.toolId) + " D" + number(t.diameter) + ": " + std::to_string(t.count) + " plunges");
+      y += 1.4 * fs_;
+    }
+    if (plan_.stockMap) {
+      for (int k = 0; k <= 4; ++k) {
+        swatch(lo_.x + k * fs_, y, stockColour(0.5 * k * stockScale_, stockScale_));
+        s_ << "\n";
+      }
+      text(lo_.x + fs_ * 5.4, y + fs_,
+           "floor stock, " + std::string(in_.maxFloorStock > 0.0 ? "limit " : "yellow ") + number(stockScale_) +
+               ": max " + number(plan_.stats.maxFloorStockLeft) + " mm");
+      y += 1.4 * fs_;
+    }
+    if (depthDots_) {
+      swatch(lo_.x, y, depthColour(zLo_));
+      swatch(lo_.x + fs_, y, depthColour(zHi_));
+      s_ << "\n";
+      text(lo_.x + fs_ * 2.4, y + fs_, "stop height " + number(zLo_) + " (dark) to " + number(zHi_) + " mm");
+    }
+  }
+
+  const PlanInput& in_;
+  const Plan& plan_;
+  std::ostringstream s_;
+  Vec2 lo_, hi_;
+  double size_ = 0.0, sw_ = 0.0, fs_ = 0.0, legendH_ = 0.0, stockScale_ = 1.0;
+  std::map<int, int> colour_;  // tool id -> palette slot
+  double zLo_ = INFINITY, zHi_ = -INFINITY;
+  bool depthDots_ = false;
+};
+
+}  // namespace
+
+std::string planToSvg(const PlanInput& input, const Plan& plan) { return SvgPicture(input, plan).draw(); }
 
 std::string planSummary(const Plan& plan) {
   const PlanStats& st = plan.stats;

@@ -235,8 +235,9 @@ std::vector<int> subtractiveClustering(const std::vector<std::vector<double>>& p
   return centres;
 }
 
-OptimizeResult optimize(const Objective& f, const std::vector<std::pair<double, double>>& bounds, Goal goal,
-                        const OptimizeOptions& opt) {
+namespace {
+
+void checkOptions(const std::vector<std::pair<double, double>>& bounds, const OptimizeOptions& opt) {
   if (bounds.empty() || bounds.size() > 2) throw Error("optimize: give bounds for one or two variables");
   for (size_t i = 0; i < bounds.size(); ++i) {
     const auto [a, b] = bounds[i];
@@ -247,94 +248,109 @@ OptimizeResult optimize(const Objective& f, const std::vector<std::pair<double, 
   }
   if (opt.periodic && bounds.size() != 1) throw Error("optimize: only a function of one variable can be periodic");
   if (!(opt.clusterRadius > 0) || !(opt.squashFactor > 0)) throw Error("optimize: cluster radii must be > 0");
+}
 
-  Problem pb(f, bounds, goal, opt);
-  const int d = pb.dims();
-  const int n = opt.samples > 2 ? opt.samples : (d == 1 ? 201 : 41);
-  const int total = d == 1 ? n : n * n;
-  // 1. Patching (3.4.1). In one periodic variable the last sample would repeat the first.
-  const double step = opt.periodic ? 1.0 / n : 1.0 / (n - 1);
-  auto uOf = [&](int idx) {
-    Eigen::VectorXd u(d);
-    if (d == 1) {
-      u[0] = idx * step;
-    } else {
-      u[0] = (idx % n) * step;
-      u[1] = (idx / n) * step;
-    }
-    return u;
-  };
-  std::vector<double> gv(total);
-  for (int i = 0; i < total; ++i) gv[i] = pb.g(uOf(i));
-  auto at = [&](int ix, int iy) -> double {
-    if (opt.periodic) ix = (ix % n + n) % n;
-    if (ix < 0 || ix >= n || iy < 0 || iy >= (d == 1 ? 1 : n)) return kInf;
-    return gv[d == 1 ? ix : iy * n + ix];
-  };
+// 1. Patching (3.4.1): g on a regular grid of n (x n) points of the unit box.
+// In one periodic variable the last sample would repeat the first.
+class Samples {
+ public:
+  Samples(Problem& pb, const OptimizeOptions& opt)
+      : d_(pb.dims()), n_(opt.samples > 2 ? opt.samples : (d_ == 1 ? 201 : 41)), periodic_(opt.periodic),
+        step_(opt.periodic ? 1.0 / n_ : 1.0 / (n_ - 1)), g_(d_ == 1 ? n_ : n_ * n_) {
+    for (int i = 0; i < size(); ++i) g_[i] = pb.g(u(i));
+  }
+  int size() const { return static_cast<int>(g_.size()); }
+  int dims() const { return d_; }
+  double step() const { return step_; }
+  double g(int i) const { return g_[i]; }
+  int ix(int i) const { return d_ == 1 ? i : i % n_; }
+  int iy(int i) const { return d_ == 1 ? 0 : i / n_; }
+  Eigen::VectorXd u(int i) const {
+    Eigen::VectorXd v(d_);
+    v[0] = ix(i) * step_;
+    if (d_ == 2) v[1] = iy(i) * step_;
+    return v;
+  }
+  // g at grid indices; +inf outside the box (wrapped in x when periodic).
+  double at(int x, int y) const {
+    if (periodic_) x = (x % n_ + n_) % n_;
+    if (x < 0 || x >= n_ || y < 0 || y >= (d_ == 1 ? 1 : n_)) return kInf;
+    return g_[d_ == 1 ? x : y * n_ + x];
+  }
 
-  // 2. Curvature classification (3.2): the convex group of the function to minimise.
+ private:
+  int d_, n_;
+  bool periodic_;
+  double step_;
+  std::vector<double> g_;
+};
+
+// 2. Curvature classification (3.2): the convex group of the function to minimise.
+std::vector<int> valleyGroup(const Samples& s) {
   double gmin = kInf, gmax = -kInf;
-  for (double v : gv)
-    if (std::isfinite(v)) {
-      gmin = std::min(gmin, v);
-      gmax = std::max(gmax, v);
+  for (int i = 0; i < s.size(); ++i)
+    if (std::isfinite(s.g(i))) {
+      gmin = std::min(gmin, s.g(i));
+      gmax = std::max(gmax, s.g(i));
     }
-  const double eps = 1e-9 * (gmax - gmin + 1e-300);
+  const double h = s.step();
+  const double tiny = 1e-9 * (gmax - gmin + 1e-300) / (h * h);
   std::vector<int> group;
-  for (int i = 0; i < total; ++i) {
-    const int ix = d == 1 ? i : i % n, iy = d == 1 ? 0 : i / n;
-    const double c = at(ix, iy);
+  for (int i = 0; i < s.size(); ++i) {
+    const int ix = s.ix(i), iy = s.iy(i);
+    const double c = s.at(ix, iy);
     if (!std::isfinite(c)) continue;
-    if (d == 1) {
-      const double l = at(ix - 1, 0), r = at(ix + 1, 0);
+    if (s.dims() == 1) {
+      const double l = s.at(ix - 1, 0), r = s.at(ix + 1, 0);
       if (!std::isfinite(l) || !std::isfinite(r)) continue;
-      const double g1 = (r - l) / (2 * step), g2 = (r - 2 * c + l) / (step * step);
+      const double g1 = (r - l) / (2 * h), g2 = (r - 2 * c + l) / (h * h);
       const double k = g2 / std::pow(1 + g1 * g1, 1.5);  // eq. 3.3
-      if (k > eps / (step * step)) group.push_back(i);
-    } else {
-      const double l = at(ix - 1, iy), r = at(ix + 1, iy), b = at(ix, iy - 1), t = at(ix, iy + 1);
-      const double bl = at(ix - 1, iy - 1), br = at(ix + 1, iy - 1), tl = at(ix - 1, iy + 1), tr = at(ix + 1, iy + 1);
-      if (!std::isfinite(l + r + b + t + bl + br + tl + tr)) continue;
-      const double gx = (r - l) / (2 * step), gy = (t - b) / (2 * step);
-      const double gxx = (r - 2 * c + l) / (step * step), gyy = (t - 2 * c + b) / (step * step);
-      const double gxy = (tr - tl - br + bl) / (4 * step * step);
-      // Fundamental forms of the graph z = g(x, y) (eqs. 3.8-3.10), upward normal.
-      const double E = 1 + gx * gx, F = gx * gy, G = 1 + gy * gy, w = std::sqrt(1 + gx * gx + gy * gy);
-      const double L = gxx / w, M = gxy / w, N = gyy / w;
-      const double K = (L * N - M * M) / (E * G - F * F);            // eq. 3.6
-      const double H = (E * N - 2 * F * M + G * L) / (2 * (E * G - F * F));  // eq. 3.7
-      // Table 3.2: elliptic or parabolic and bending up = a valley of g.
-      const double tiny = eps / (step * step);
-      if (H > tiny && K > -tiny * tiny) group.push_back(i);
+      if (k > tiny) group.push_back(i);
+      continue;
     }
+    const double l = s.at(ix - 1, iy), r = s.at(ix + 1, iy), b = s.at(ix, iy - 1), t = s.at(ix, iy + 1);
+    const double bl = s.at(ix - 1, iy - 1), br = s.at(ix + 1, iy - 1), tl = s.at(ix - 1, iy + 1),
+                 tr = s.at(ix + 1, iy + 1);
+    if (!std::isfinite(l + r + b + t + bl + br + tl + tr)) continue;
+    const double gx = (r - l) / (2 * h), gy = (t - b) / (2 * h);
+    const double gxx = (r - 2 * c + l) / (h * h), gyy = (t - 2 * c + b) / (h * h);
+    const double gxy = (tr - tl - br + bl) / (4 * h * h);
+    // Fundamental forms of the graph z = g(x, y) (eqs. 3.8-3.10), upward normal.
+    const double E = 1 + gx * gx, F = gx * gy, G = 1 + gy * gy, w = std::sqrt(1 + gx * gx + gy * gy);
+    const double L = gxx / w, M = gxy / w, N = gyy / w;
+    const double K = (L * N - M * M) / (E * G - F * F);                     // eq. 3.6
+    const double H = (E * N - 2 * F * M + G * L) / (2 * (E * G - F * F));  // eq. 3.7
+    // Table 3.2: elliptic or parabolic and bending up = a valley of g.
+    if (H > tiny && K > -tiny * tiny) group.push_back(i);
   }
+  return group;
+}
 
-  // 3. Subtractive clustering of the group (3.3.1): the start points.
+// 3. Subtractive clustering of the group (3.3.1): the start points; beyond the
+// thesis also the grid's own local minima and its best point, so that optima
+// in narrow or flat regions and on the box's faces are reached too.
+std::vector<int> startPoints(const Samples& s, const std::vector<int>& group, const OptimizeOptions& opt) {
   std::vector<int> starts;
-  {
-    std::vector<std::vector<double>> pts;
-    for (int i : group) {
-      const Eigen::VectorXd u = uOf(i);
-      pts.emplace_back(u.data(), u.data() + d);
-    }
-    for (int c : subtractiveClustering(pts, opt.clusterRadius, opt.squashFactor * opt.clusterRadius,
-                                       opt.acceptRatio, opt.rejectRatio))
-      starts.push_back(group[c]);
+  std::vector<std::vector<double>> pts;
+  for (int i : group) {
+    const Eigen::VectorXd u = s.u(i);
+    pts.emplace_back(u.data(), u.data() + s.dims());
   }
-  // Beyond the thesis: the grid's own local minima and its best point, so that
-  // optima in narrow or flat regions and on the box's faces are reached too.
+  for (int c : subtractiveClustering(pts, opt.clusterRadius, opt.squashFactor * opt.clusterRadius, opt.acceptRatio,
+                                     opt.rejectRatio))
+    starts.push_back(group[c]);
   int best = -1;
-  for (int i = 0; i < total; ++i) {
-    if (!std::isfinite(gv[i])) continue;
-    if (best < 0 || gv[i] < gv[best]) best = i;
-    const int ix = d == 1 ? i : i % n, iy = d == 1 ? 0 : i / n;
+  const int reachY = s.dims() == 1 ? 0 : 1;
+  for (int i = 0; i < s.size(); ++i) {
+    if (!std::isfinite(s.g(i))) continue;
+    if (best < 0 || s.g(i) < s.g(best)) best = i;
     bool lowest = true, lower = false;
-    for (int dy = (d == 1 ? 0 : -1); dy <= (d == 1 ? 0 : 1); ++dy)
+    for (int dy = -reachY; dy <= reachY; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
         if (!dx && !dy) continue;
-        const double v = at(ix + dx, iy + dy);
-        if (v < gv[i]) lowest = false;
-        if (v > gv[i]) lower = true;
+        const double v = s.at(s.ix(i) + dx, s.iy(i) + dy);
+        if (v < s.g(i)) lowest = false;
+        if (v > s.g(i)) lower = true;
       }
     if (lowest && lower) starts.push_back(i);
   }
@@ -342,18 +358,14 @@ OptimizeResult optimize(const Objective& f, const std::vector<std::pair<double, 
   starts.push_back(best);
   std::sort(starts.begin(), starts.end());
   starts.erase(std::unique(starts.begin(), starts.end()), starts.end());
+  return starts;
+}
 
-  // 4. Quasi-Newton from every start (3.4.3), then a derivative-free polish.
-  OptimizeResult out;
+// 4. Quasi-Newton from every start (3.4.3), then a derivative-free polish; the
+// distinct local minima of g found, lowest first.
+std::vector<std::pair<Eigen::VectorXd, double>> descend(Problem& pb, const std::vector<Eigen::VectorXd>& from,
+                                                        bool periodic) {
   std::vector<std::pair<Eigen::VectorXd, double>> found;
-  std::vector<Eigen::VectorXd> from;
-  for (int s : starts) from.push_back(uOf(s));
-  for (const std::vector<double>& x : opt.starts) {
-    if (static_cast<int>(x.size()) != d) throw Error("optimize: a start point has the wrong dimension");
-    Eigen::VectorXd u(d);
-    for (int i = 0; i < d; ++i) u[i] = (x[i] - bounds[i].first) / (bounds[i].second - bounds[i].first);
-    from.push_back(pb.project(u));
-  }
   for (const Eigen::VectorXd& start : from) {
     double gu;
     Eigen::VectorXd u = pb.bfgs(start, gu);
@@ -362,7 +374,7 @@ OptimizeResult optimize(const Objective& f, const std::vector<std::pair<double, 
     bool dup = false;
     for (auto& [v, gvv] : found) {
       Eigen::VectorXd diff = v - u;
-      if (opt.periodic) diff[0] -= std::round(diff[0]);
+      if (periodic) diff[0] -= std::round(diff[0]);
       if (diff.lpNorm<Eigen::Infinity>() < 1e-6) {
         dup = true;
         if (gu < gvv) {
@@ -374,7 +386,28 @@ OptimizeResult optimize(const Objective& f, const std::vector<std::pair<double, 
     if (!dup) found.emplace_back(u, gu);
   }
   std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
-  for (const auto& [u, gu] : found) out.locals.push_back({pb.toX(u), pb.sign() * gu});
+  return found;
+}
+
+}  // namespace
+
+OptimizeResult optimize(const Objective& f, const std::vector<std::pair<double, double>>& bounds, Goal goal,
+                        const OptimizeOptions& opt) {
+  checkOptions(bounds, opt);
+  Problem pb(f, bounds, goal, opt);
+  const Samples samples(pb, opt);
+  std::vector<Eigen::VectorXd> from;
+  for (int s : startPoints(samples, valleyGroup(samples), opt)) from.push_back(samples.u(s));
+  for (const std::vector<double>& x : opt.starts) {
+    if (static_cast<int>(x.size()) != pb.dims()) throw Error("optimize: a start point has the wrong dimension");
+    Eigen::VectorXd u(pb.dims());
+    for (int i = 0; i < pb.dims(); ++i) u[i] = (x[i] - bounds[i].first) / (bounds[i].second - bounds[i].first);
+    from.push_back(pb.project(u));
+  }
+  OptimizeResult out;
+  for (const auto& [u, gu] : descend(pb, from, opt.periodic)) out.locals.push_back({pb.toX(u), pb.sign() * gu});
+  // Every start is a finite sample, but the descent may leave the finite part.
+  if (out.locals.empty()) throw Error("optimize: no finite local optimum found from any start");
   out.x = out.locals.front().x;
   out.value = out.locals.front().value;
   out.evaluations = pb.evaluations();

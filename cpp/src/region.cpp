@@ -43,9 +43,8 @@ Loop cleanLoop(const Loop& in, const std::string& name) {
 bool insideLoop(const Loop& loop, Vec2 p) {
   bool in = false;
   const size_t n = loop.size();
-  for (size_t i = 0, j = n - 1; i < n; j = i++) {
+  for (size_t i = 0, j = n - 1; i < n; j = i++)
     if (crossesRay(loop[j], loop[i], p)) in = !in;
-  }
   return in;
 }
 
@@ -58,8 +57,18 @@ Region& Region::operator=(Region&&) noexcept = default;
 Region::Region(const Loop& boundary, const std::vector<Loop>& islands) : index_(new Index) {
   loops_.push_back(cleanLoop(boundary, "boundary"));
   for (size_t i = 0; i < islands.size(); ++i) loops_.push_back(cleanLoop(islands[i], loopName(i + 1)));
+  orientLoops();
+  buildWalls();
+  checkCrossings();
+  checkNesting();
+  Bounds b;
+  b.add(loops_[0]);
+  lo_ = b.lo;
+  hi_ = b.hi;
+}
 
-  // Orientation: material to remove on the left of every wall.
+// Orientation: material to remove on the left of every wall.
+void Region::orientLoops() {
   for (size_t i = 0; i < loops_.size(); ++i) {
     const double a = signedArea(loops_[i]);
     double scale = 0.0;
@@ -67,9 +76,11 @@ Region::Region(const Loop& boundary, const std::vector<Loop>& islands) : index_(
     if (std::fabs(a) <= 1e-12 * scale * scale) throw Error(loopName(i) + ": has zero area");
     if ((i == 0) != (a > 0)) std::reverse(loops_[i].begin(), loops_[i].end());
   }
+}
 
-  // Walls and vertices.
-  std::vector<BoxValue> boxes;
+// Walls and vertices, each loop's walls numbered consecutively from loopFirst_;
+// the walls' and the reflex vertices' R-trees.
+void Region::buildWalls() {
   for (size_t li = 0; li < loops_.size(); ++li) {
     const Loop& L = loops_[li];
     const int first = static_cast<int>(walls_.size());
@@ -86,59 +97,58 @@ Region::Region(const Loop& boundary, const std::vector<Loop>& islands) : index_(
       vertices_.push_back({L[k], prev, next, cross(din, dout) < 0.0});
     }
   }
+  std::vector<BoxValue> boxes;
   for (size_t i = 0; i < walls_.size(); ++i) boxes.emplace_back(boxOf(walls_[i]), static_cast<int>(i));
   index_->walls = decltype(index_->walls)(boxes.begin(), boxes.end());
+  std::vector<PointValue> reflex;
+  for (size_t v = 0; v < vertices_.size(); ++v)
+    if (vertices_[v].reflex) reflex.emplace_back(toBPoint(vertices_[v].p), static_cast<int>(v));
+  index_->reflex = decltype(index_->reflex)(reflex.begin(), reflex.end());
+}
 
-  // Self-intersections and loops crossing each other.
+// Self-intersections and loops crossing each other: every pair of walls whose boxes meet.
+void Region::checkCrossings() const {
   for (size_t i = 0; i < walls_.size(); ++i) {
     std::vector<BoxValue> hits;
     index_->walls.query(bgi::intersects(boxOf(walls_[i])), std::back_inserter(hits));
-    for (const BoxValue& h : hits) {
-      const size_t j = static_cast<size_t>(h.second);
-      if (j <= i) continue;
-      const Segment& s1 = walls_[i];
-      const Segment& s2 = walls_[j];
-      const int l1 = wallLoop_[i], l2 = wallLoop_[j];
-      // Walls of one loop are numbered consecutively from loopFirst_[loop].
-      const size_t n = loops_[l1].size(), f = loopFirst_[l1];
-      const bool adjacent = l1 == l2 && (j == i + 1 || (i == f && j == f + n - 1));
-      if (adjacent) {
-        // Adjacent walls share one end; they conflict only when they fold back on each other.
-        const Vec2 d1 = s1.b - s1.a, d2 = s2.b - s2.a;
-        const bool folds = std::fabs(cross(d1, d2)) <= 1e-12 * norm(d1) * norm(d2) && dot(d1, d2) < 0.0;
-        if (folds)
-          throw Error(loopName(l1) + ": self-intersecting (the loop folds back on itself near " +
-                      formatPoint(j == i + 1 ? s1.b : s1.a) + ")");
-        continue;
-      }
-      if (!segmentsIntersect(s1, s2)) continue;
-      Vec2 where = s1.a;
-      if (auto x = intersectLines(s1.a, s1.b - s1.a, s2.a, s2.b - s2.a)) where = *x;
-      if (l1 == l2) throw Error(loopName(l1) + ": self-intersecting near " + formatPoint(where));
-      if (l1 == 0 || l2 == 0)
-        throw Error(loopName(std::max(l1, l2)) + ": crosses or touches the boundary near " + formatPoint(where));
-      throw Error("islands " + std::to_string(l1) + " and " + std::to_string(l2) + " overlap near " +
-                  formatPoint(where));
-    }
+    for (const BoxValue& h : hits)
+      if (static_cast<size_t>(h.second) > i) checkWallPair(i, static_cast<size_t>(h.second));
   }
-  // No crossings: each island is wholly inside or wholly outside every other loop.
+}
+
+void Region::checkWallPair(size_t i, size_t j) const {
+  const Segment& s1 = walls_[i];
+  const Segment& s2 = walls_[j];
+  const int l1 = wallLoop_[i], l2 = wallLoop_[j];
+  const size_t n = loops_[l1].size(), f = loopFirst_[l1];
+  const bool adjacent = l1 == l2 && (j == i + 1 || (i == f && j == f + n - 1));
+  if (adjacent) {
+    // Adjacent walls share one end; they conflict only when they fold back on each other.
+    const Vec2 d1 = s1.b - s1.a, d2 = s2.b - s2.a;
+    const bool folds = std::fabs(cross(d1, d2)) <= 1e-12 * norm(d1) * norm(d2) && dot(d1, d2) < 0.0;
+    if (folds)
+      throw Error(loopName(l1) + ": self-intersecting (the loop folds back on itself near " +
+                  formatPoint(j == i + 1 ? s1.b : s1.a) + ")");
+    return;
+  }
+  if (!segmentsIntersect(s1, s2)) return;
+  Vec2 where = s1.a;
+  if (auto x = intersectLines(s1.a, s1.b - s1.a, s2.a, s2.b - s2.a)) where = *x;
+  if (l1 == l2) throw Error(loopName(l1) + ": self-intersecting near " + formatPoint(where));
+  if (l1 == 0 || l2 == 0)
+    throw Error(loopName(std::max(l1, l2)) + ": crosses or touches the boundary near " + formatPoint(where));
+  throw Error("islands " + std::to_string(l1) + " and " + std::to_string(l2) + " overlap near " +
+              formatPoint(where));
+}
+
+// No crossings: each island is wholly inside or wholly outside every other loop.
+void Region::checkNesting() const {
   for (size_t i = 1; i < loops_.size(); ++i) {
     if (!insideLoop(loops_[0], loops_[i][0])) throw Error(loopName(i) + ": lies outside the boundary");
     for (size_t j = 1; j < loops_.size(); ++j)
       if (i != j && insideLoop(loops_[j], loops_[i][0]))
         throw Error("islands " + std::to_string(j) + " and " + std::to_string(i) + " overlap (island " +
                     std::to_string(i) + " lies inside island " + std::to_string(j) + ")");
-  }
-
-  std::vector<PointValue> reflex;
-  for (size_t v = 0; v < vertices_.size(); ++v)
-    if (vertices_[v].reflex) reflex.emplace_back(BPoint(vertices_[v].p.x, vertices_[v].p.y), static_cast<int>(v));
-  index_->reflex = decltype(index_->reflex)(reflex.begin(), reflex.end());
-
-  lo_ = hi_ = loops_[0][0];
-  for (const Vec2& p : loops_[0]) {
-    lo_ = {std::min(lo_.x, p.x), std::min(lo_.y, p.y)};
-    hi_ = {std::max(hi_.x, p.x), std::max(hi_.y, p.y)};
   }
 }
 

@@ -61,9 +61,17 @@ class Tsp {
   }
   const std::vector<int>& order() const { return t_; }
 
-  // Greedy edge: shortest candidate edges first, keeping degrees <= 2 and no
-  // early cycle; the fragments are then joined end to end, nearest first.
+  // Construction: greedy edge fragments joined end to end, nearest first, then
+  // (an open path) opened at the dummy node.
   void greedyEdge() {
+    std::vector<int> order = joinFragments(greedyFragments());
+    if (dummy_ >= 0) order.insert(order.begin() + openingCut(order) + 1, dummy_);
+    setOrder(order);
+  }
+
+  // Greedy edge: shortest candidate edges first, keeping degrees <= 2 and no
+  // early cycle. Returns each node's fragment neighbours.
+  std::vector<std::vector<int>> greedyFragments() const {
     struct E {
       double len;
       int a, b;
@@ -91,7 +99,11 @@ class Tsp {
       root[find(e.a)] = find(e.b);
       ++added;
     }
-    // Walk the fragments, always continuing to the nearest free fragment end.
+    return adj;
+  }
+
+  // Walk the fragments, always continuing to the nearest free fragment end.
+  std::vector<int> joinFragments(const std::vector<std::vector<int>>& adj) const {
     std::vector<char> used(n_, 0);
     std::vector<int> order;
     auto walk = [&](int from) {
@@ -120,20 +132,20 @@ class Tsp {
           if (!used[i]) best = i;
       walk(best);
     }
-    if (dummy_ >= 0) {
-      // Open the tour: at its longest edge, or next to the start node.
-      int cut = 0;
-      if (start_ >= 0) {
-        const int at = static_cast<int>(std::find(order.begin(), order.end(), start_) - order.begin());
-        const int before = (at + n_ - 1) % n_, after = (at + 1) % n_;
-        cut = d(order[before], start_) > d(start_, order[after]) ? before : at;
-      } else {
-        for (int i = 0; i < n_; ++i)
-          if (d(order[i], order[(i + 1) % n_]) > d(order[cut], order[(cut + 1) % n_])) cut = i;
-      }
-      order.insert(order.begin() + cut + 1, dummy_);
+    return order;
+  }
+
+  // Where an open path starts: after its longest edge, or next to the start node.
+  int openingCut(const std::vector<int>& order) const {
+    int cut = 0;
+    if (start_ >= 0) {
+      const int at = static_cast<int>(std::find(order.begin(), order.end(), start_) - order.begin());
+      const int before = (at + n_ - 1) % n_, after = (at + 1) % n_;
+      return d(order[before], start_) > d(start_, order[after]) ? before : at;
     }
-    setOrder(order);
+    for (int i = 0; i < n_; ++i)
+      if (d(order[i], order[(i + 1) % n_]) > d(order[cut], order[(cut + 1) % n_])) cut = i;
+    return cut;
   }
 
   // 2-opt and Or-opt to a local optimum, starting from the queued nodes.

@@ -208,3 +208,29 @@ TEST(Plan, CoverageShortfallIsAWarning) {
   ASSERT_EQ(grid.warnings.size(), 1u);
   EXPECT_NE(grid.warnings[0].find("grid"), std::string::npos);
 }
+
+TEST(Plan, NoPlungeStopsBelowTheFinalDepth) {
+  // A floor sloping from -12 to -4 across the pocket, roughed down to -8 only.
+  PlanInput in = square();
+  in.floor.kind = Floor::Kind::Expression;
+  in.floor.expression = "-12 + x / 15";
+  in.finalDepth = -8.0;
+  const Plan p = plan(in);
+  ASSERT_FALSE(p.plunges.empty());
+  int held = 0;
+  for (const Plunge& q : p.plunges) {
+    EXPECT_GE(q.z, -8.0 + in.floorAllowance - 1e-12);
+    EXPECT_GE(q.approachZ, q.z);
+    EXPECT_GE(q.retractZ, q.z);
+    held += q.z == -8.0 + in.floorAllowance;
+  }
+  EXPECT_GT(held, 0);  // the deep half stops at the final depth
+  // Plunges over the floor above it keep their own stop heights.
+  in.finalDepth.reset();
+  const Plan free = plan(in);
+  ASSERT_EQ(free.plunges.size(), p.plunges.size());
+  for (size_t i = 0; i < p.plunges.size(); ++i)
+    EXPECT_EQ(p.plunges[i].z, std::max(free.plunges[i].z, -8.0 + in.floorAllowance));
+  in.finalDepth = 1.0;
+  EXPECT_NE(planError(in).find("final_depth"), std::string::npos);
+}

@@ -1,6 +1,7 @@
 """The Plunge Rough operation headless: paths checked against the part's own geometry."""
 import json
 import math
+import os
 
 import FreeCAD
 import Part
@@ -108,6 +109,56 @@ def test_sculptured_floor_and_freeform_walls(doc):
     assert plan["stats"]["rest_plunges"] > 0 and plan["stats"]["max_floor_stock_left"] <= 1.0
     assert not any("stock stay above the floor" in w for w in plan.get("warnings", []))
     assert "floor up to 0." in op.Summary
+
+
+def test_build_input_is_the_planner_input_of_the_properties(doc, tmp_path):
+    import jsonschema
+    job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    with open(os.path.join(root, "docs", "plan-input.schema.json")) as f:
+        schema = jsonschema.Draft202012Validator(json.load(f))
+    plungers = PlungeRough._tool_controllers(op)
+    faces = PlungeRough.selected_faces(op, plungers)
+    before = (op.PlanData, op.Summary, [c.Name for c in op.Path.Commands])
+    data = PlungeRough.build_input(op, plungers, faces, str(tmp_path))
+    assert data == json.loads(op.PlanData)["input"]  # what the operation planned with
+    assert (op.PlanData, op.Summary, [c.Name for c in op.Path.Commands]) == before  # changed nothing
+    schema.validate(data)
+    assert [t["diameter"] for t in data["tools"]] == [20, 12, 6]
+    assert [t["id"] for t in data["tools"]] == [int(tc.ToolNumber) for tc in plungers]
+    assert (data["top_z"], data["safe_z"], data["final_depth"]) == (
+        op.StartDepth.Value, op.SafeHeight.Value, op.FinalDepth.Value)
+    assert data["floor"] == {"z": 10.0} and data["allowance"]["floor"] == 0.3
+    # The chords of the round island lie off it by at most the chord tolerance: added.
+    assert 0.5 < data["allowance"]["radial"] <= 0.5 + op.ChordTolerance.Value + 1e-5
+    xs, ys = [p[0] for p in data["boundary"]], [p[1] for p in data["boundary"]]
+    assert (min(xs), max(xs), min(ys), max(ys)) == pytest.approx((10, 150, 10, 90))
+    assert len(data["islands"]) == 2
+    # The options as the planner's keys.
+    op.UseCannedCycle = True
+    op.Strategy = "Grid (square)"
+    op.AutoSelectTools = True
+    data = PlungeRough.build_input(op, plungers, faces, str(tmp_path))
+    schema.validate(data)
+    assert data["lead_out"] == 0.0 and data["stock_aware_heights"] is False
+    assert data["strategy"] == "grid" and data["grid"] == {"pattern": "square"}
+    assert data["tools"] == "auto" and [t["diameter"] for t in data["tool_library"]] == [20, 12, 6]
+    op.SafeHeight = op.ClearanceHeight.Value + 1
+    with pytest.raises(ValueError, match="safe height"):
+        PlungeRough.build_input(op, plungers, faces, str(tmp_path))
+
+
+def test_no_plunge_below_the_final_depth(doc):
+    job, op, tcs = build_op(doc, parts.freeform_part(True), sculptured=True)
+    deepest = min(p["z"] for p in PlungeRough.plan_of(op)["plunges"])
+    op.setExpression("FinalDepth", None)
+    op.FinalDepth = deepest + 2  # above the floor's low part: rough down to there only
+    doc.recompute()
+    plunges = plunges_of(job)
+    assert json.loads(op.PlanData)["input"]["final_depth"] == op.FinalDepth.Value == deepest + 2
+    zs = [z for *_, z in plunges]
+    assert min(zs) == pytest.approx(deepest + 2 + 0.3)
+    assert max(zs) > deepest + 2 + 0.3 + 1  # where the floor is higher, the floor decides
 
 
 def test_canned_cycles_with_pecking(doc):

@@ -86,6 +86,19 @@ def test_stdout_is_the_default_output(cli, tmp_path):
     assert json.loads(res.stdout)["stats"]["plunge_count"] > 0
 
 
+def test_automatic_tools_on_stdout_give_valid_json(cli, tmp_path):
+    # The tool choice's reasoning goes to standard error: standard output stays the plan.
+    data = load("neck")
+    data["tool_library"] = [{"diameter": d} for d in (20, 16, 12, 8, 6)]
+    data["tools"] = "auto"
+    res = run(cli, data, tmp_path)
+    assert res.returncode == 0, res.stderr
+    plan = json.loads(res.stdout)  # the whole of it: "Extra data" after the plan fails here
+    reasoning = plan["tool_selection"]["reasoning"]
+    assert plan["stats"]["plunge_count"] == len(plan["plunges"]) > 0 and reasoning
+    assert all(line in res.stderr.splitlines() for line in reasoning)
+
+
 def test_same_input_same_plan(cli, tmp_path):
     a = json.loads(run(cli, load("islands"), tmp_path).stdout)
     b = json.loads(run(cli, load("islands"), tmp_path).stdout)

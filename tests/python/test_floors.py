@@ -93,6 +93,27 @@ def test_brep_floor_through_the_cli(cli, tmp_path):
         "stock stay above the floor" in w for w in plan.get("warnings", []))
 
 
+def test_relative_brep_names_start_where_the_input_is(cli, plunge, tmp_path, monkeypatch):
+    # One rule for every caller: the input file's folder when read from a file
+    # (the CLI, whatever the current folder), the current folder for a dict.
+    job = tmp_path / "job"
+    job.mkdir()
+    shutil.copy(os.path.join(DATA, "floors", "bumps.brep"), job / "bumps.brep")
+    data = {"boundary": [[2, 2], [98, 2], [98, 73], [2, 73]], "tools": [{"diameter": 12}], "top_z": 0,
+            "safe_z": 5, "floor": {"brep": "bumps.brep"}, "max_floor_stock": 0}
+    (job / "pocket.json").write_text(json.dumps(data))
+    res = subprocess.run([cli, "plan", "job/pocket.json", "-o", "plan.json"], capture_output=True, text=True,
+                         cwd=str(tmp_path))
+    assert res.returncode == 0, res.stderr
+    by_cli = json.loads((tmp_path / "plan.json").read_text())["plunges"]
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValueError, match="cannot read bumps.brep"):
+        plunge.plan(data)
+    monkeypatch.chdir(job)
+    by_module = plunge.plan(data)["plunges"]
+    assert [(p["x"], p["y"], p["z"]) for p in by_module] == [(p["x"], p["y"], p["z"]) for p in by_cli]
+
+
 @pytest.mark.parametrize("floor,message", [
     ({"expression": "sin(x"}, "floor.expression"),
     ({"expression": "z + 1"}, "Unexpected token"),

@@ -66,6 +66,14 @@ class Region {
   Vec2 maxCorner() const { return hi_; }
 
  private:
+  // The constructor's steps: material on the left of every wall, walls and
+  // vertices indexed, then the checks that the loops neither cross nor nest wrongly.
+  void orientLoops();
+  void buildWalls();
+  void checkCrossings() const;
+  void checkWallPair(size_t i, size_t j) const;
+  void checkNesting() const;
+
   struct Index;
   std::vector<Loop> loops_;
   std::vector<Segment> walls_;
