@@ -15,6 +15,25 @@ using namespace detail;
 
 namespace {
 
+// Compass search for a maximum of f: from x (where f is v), move by the first
+// direction x + d step that rises, halve the step when none does, down to minStep.
+template <class Point, class F>
+double climb(Point x, double v, double step, double minStep, const std::vector<Point>& directions, const F& f) {
+  while (step > minStep) {
+    bool moved = false;
+    for (const Point& d : directions) {
+      const double w = f(x + d * step);
+      if (w > v) {
+        v = w;
+        x = x + d * step;
+        moved = true;
+        break;
+      }
+    }
+    if (!moved) step *= 0.5;
+  }
+  return v;
+}
 
 // Maximum of g over the circle of radius r around c (eq. 4.84), by the global
 // optimizer in one periodic variable; -inf if g is nowhere finite on it.
@@ -109,42 +128,13 @@ double stopHeightBruteForce(const FloorSurface& floor, Vec2 c, const Cutter& cut
   std::sort(rim.begin(), rim.end(), byValue);
   double best = -kInf;
   // Compass search from the best samples: in the plane inside, along the rim on it.
-  for (size_t k = 0; k < std::min<size_t>(6, inner.size()); ++k) {
-    Vec2 p = inner[k].second;
-    double v = inner[k].first, step = h;
-    while (step > 1e-10) {
-      bool moved = false;
-      for (Vec2 d : {Vec2{1, 0}, Vec2{-1, 0}, Vec2{0, 1}, Vec2{0, -1}, Vec2{0.7071, 0.7071}, Vec2{-0.7071, 0.7071},
-                     Vec2{0.7071, -0.7071}, Vec2{-0.7071, -0.7071}}) {
-        const double w = lift(p + d * step);
-        if (w > v) {
-          v = w;
-          p = p + d * step;
-          moved = true;
-          break;
-        }
-      }
-      if (!moved) step *= 0.5;
-    }
-    best = std::max(best, v);
-  }
-  for (size_t k = 0; k < std::min<size_t>(6, rim.size()); ++k) {
-    double t = rim[k].second.x, v = rim[k].first, step = h / R;
-    while (step > 1e-12) {
-      bool moved = false;
-      for (double s : {step, -step}) {
-        const double w = lift({c.x + R * std::cos(t + s), c.y + R * std::sin(t + s)});
-        if (w > v) {
-          v = w;
-          t += s;
-          moved = true;
-          break;
-        }
-      }
-      if (!moved) step *= 0.5;
-    }
-    best = std::max(best, v);
-  }
+  const std::vector<Vec2> compass{{1, 0},           {-1, 0},          {0, 1},           {0, -1},
+                                  {0.7071, 0.7071}, {-0.7071, 0.7071}, {0.7071, -0.7071}, {-0.7071, -0.7071}};
+  for (size_t k = 0; k < std::min<size_t>(6, inner.size()); ++k)
+    best = std::max(best, climb(inner[k].second, inner[k].first, h, 1e-10, compass, lift));
+  auto onRim = [&](double t) { return lift({c.x + R * std::cos(t), c.y + R * std::sin(t)}); };
+  for (size_t k = 0; k < std::min<size_t>(6, rim.size()); ++k)
+    best = std::max(best, climb(rim[k].second.x, rim[k].first, h / R, 1e-12, std::vector<double>{1.0, -1.0}, onRim));
   return best;
 }
 

@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <limits>
 #include <map>
-#include <sstream>
 
 #include "plunge/covering.hpp"
 #include "plunge/engagement.hpp"
@@ -254,25 +252,18 @@ void planMotion(const PlanInput& in, const Region& region, const DepthSolver& de
     if (p.leadOut) touched.add(*p.leadOut, r, p.z + cornerHeight(t));
     p.retractZ = in.safeZ;
   }
-  std::ostringstream w;
-  w << std::fixed << std::setprecision(2);
-  if (plan.stats.overEngaged > 0) {
-    w << plan.stats.overEngaged << " plunges cut a wider band than their tool's max engagement (on sculptured "
-      << "floors, where uneven depths leave thick steps)";
-    plan.warnings.push_back(w.str());
-    w.str("");
-  }
-  if (plan.stats.thinCuts > 0) {
-    w << plan.stats.thinCuts << " plunges cut a narrower band than their tool's min engagement (the last slivers "
-      << "of their region, where the walls leave no wider cut): the tool may deflect there";
-    plan.warnings.push_back(w.str());
-    w.str("");
-  }
-  if (coreOnMaterial > 0)
-    plan.warnings.push_back(std::to_string(coreOnMaterial) +
-                            " plunges of a non-centre-cutting tool have material under the core (uneven floor depths)");
-  if (tooDeep > 0)
-    plan.warnings.push_back(std::to_string(tooDeep) + " plunges cut deeper than their tool's flute length");
+  // What the limits could not keep, each said once with its count.
+  auto warn = [&](int count, const char* what) {
+    if (count > 0) plan.warnings.push_back(std::to_string(count) + what);
+  };
+  warn(plan.stats.overEngaged,
+       " plunges cut a wider band than their tool's max engagement (on sculptured floors, where uneven depths leave"
+       " thick steps)");
+  warn(plan.stats.thinCuts,
+       " plunges cut a narrower band than their tool's min engagement (the last slivers of their region, where the"
+       " walls leave no wider cut): the tool may deflect there");
+  warn(coreOnMaterial, " plunges of a non-centre-cutting tool have material under the core (uneven floor depths)");
+  warn(tooDeep, " plunges cut deeper than their tool's flute length");
   plan.stats.estimatedMinutes = motionMinutes(plan, in.tools, in, false);
   plan.stats.minutesAtSafeHeight = motionMinutes(plan, in.tools, in, true);
 }

@@ -4,25 +4,20 @@
 #include "plunge/error.hpp"
 #include "plunge/heightfield.hpp"
 #include "plunge/plan.hpp"
+#include "testutil.hpp"
 
 using namespace plunge;
 
 namespace {
 
 PlanInput pocket(double maxEngagement, bool centerCutting) {
-  PlanInput in;
-  in.boundary = {{0, 0}, {140, 0}, {140, 90}, {0, 90}};
-  in.islands = {{{60, 35}, {80, 35}, {70, 55}}};
-  Tool big{20, 1, 100};
-  big.maxEngagement = maxEngagement;
+  PlanInput in = test::rectanglePocket(140, 90);
+  in.tools[0].maxEngagement = maxEngagement;
   if (!centerCutting) {
-    big.centerCutting = false;
-    big.coreDiameter = 6;
+    in.tools[0].centerCutting = false;
+    in.tools[0].coreDiameter = 6;
   }
-  in.tools = {big, {8, 2, 100}};
-  in.floor.z = -12;
-  in.floorAllowance = 0.2;
-  in.radialAllowance = 0.3;
+  in.tools[1].diameter = 8;
   return in;
 }
 

@@ -5,20 +5,13 @@
 #include "plunge/plan.hpp"
 #include "plunge/region.hpp"
 
+#include "testutil.hpp"
+
 using namespace plunge;
 
 namespace {
 
-PlanInput pocket() {
-  PlanInput in;
-  in.boundary = {{0, 0}, {120, 0}, {120, 80}, {0, 80}};
-  in.islands = {{{50, 30}, {70, 30}, {60, 50}}};
-  in.tools = {{20, 1, 100}, {10, 2, 100}};
-  in.floor.z = -12;
-  in.floorAllowance = 0.2;
-  in.radialAllowance = 0.3;
-  return in;
-}
+PlanInput pocket() { return test::rectanglePocket(); }
 
 }  // namespace
 

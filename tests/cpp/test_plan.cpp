@@ -11,13 +11,8 @@ using namespace plunge;
 namespace {
 
 PlanInput square() {
-  PlanInput in;
-  in.boundary = {{0, 0}, {120, 0}, {120, 80}, {0, 80}};
-  in.islands = {{{50, 30}, {70, 30}, {60, 50}}};
-  in.tools = {{10, 2, 100}, {20, 1, 100}};
-  in.floor.z = -12;
-  in.floorAllowance = 0.2;
-  in.radialAllowance = 0.3;
+  PlanInput in = test::rectanglePocket();
+  std::swap(in.tools[0], in.tools[1]);  // any order: the plan takes the largest first
   return in;
 }
 

@@ -100,12 +100,7 @@ TEST(Selection, WeightOnToolCountPrefersFewerTools) {
 
 TEST(Selection, Deterministic) {
   const PlanInput in = neckInput();
-  const Plan a = plan(in), b = plan(in);
-  ASSERT_EQ(a.plunges.size(), b.plunges.size());
-  for (size_t i = 0; i < a.plunges.size(); ++i) {
-    EXPECT_EQ(a.plunges[i].x, b.plunges[i].x);
-    EXPECT_EQ(a.plunges[i].y, b.plunges[i].y);
-  }
+  test::expectSamePlunges(plan(in), plan(in));
 }
 
 TEST(Selection, BadLibrary) {

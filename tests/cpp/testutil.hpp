@@ -52,6 +52,20 @@ inline bool bruteInside(const std::vector<Loop>& loops, Vec2 p) {
   return in;
 }
 
+// A rectangular pocket with a triangular island, 12 mm deep, and two plungers
+// (20 mm T1, 10 mm T2), allowances 0.3 mm radial and 0.2 mm on the floor.
+inline PlanInput rectanglePocket(double width = 120, double height = 80) {
+  PlanInput in;
+  in.boundary = {{0, 0}, {width, 0}, {width, height}, {0, height}};
+  const Vec2 c{0.5 * width, 0.5 * height};
+  in.islands = {{c + Vec2{-10, -10}, c + Vec2{10, -10}, c + Vec2{0, 10}}};
+  in.tools = {{20, 1, 100}, {10, 2, 100}};
+  in.floor.z = -12;
+  in.floorAllowance = 0.2;
+  in.radialAllowance = 0.3;
+  return in;
+}
+
 inline std::string readData(const std::string& rel) {
   std::ifstream f(std::string(PLUNGE_TEST_DATA) + "/" + rel);
   std::stringstream s;

@@ -5,7 +5,6 @@ to it plans, all from the Mod folder and not from the source or build tree."""
 import json
 import os
 import subprocess
-import sys
 
 from conftest import BUILD, ROOT
 

@@ -6,15 +6,13 @@ tool's own solid and the posted program, run through the G-code checker."""
 import json
 import math
 
-import FreeCAD
-import Mesh
 
 import parts
-from freecad_plugin import PlungeRough, compat
+from freecad_plugin import PlungeRough
 from freecad_plugin.compat import post_job
 from gcode import parse_gcode, replay
 from machine_check import assert_machinable, check_program
-from test_sim import expand, height_map
+from test_sim import height_map, simulate
 
 
 def plunge_cutter_job(doc):
@@ -64,14 +62,7 @@ def test_plunge_cutter_job_plans_simulates_and_posts_a_checked_program(doc):
     # FreeCAD's simulator, each operation with its tool controller's own solid:
     # it removes what the plan removes.
     stock = job.Stock.Shape
-    sim = compat.voxel_simulator()
-    sim.BeginSimulation(stock, 0.5)
-    for o in job.Operations.Group:
-        sim.SetToolShape(o.ToolController.Tool.Shape, 0.05)
-        pos = FreeCAD.Placement(FreeCAD.Vector(0, 0, op.ClearanceHeight.Value), FreeCAD.Rotation())
-        for c in expand(o.Path.Commands):
-            pos = sim.ApplyCommand(pos, c)
-    meshes = [Mesh.Mesh(m) for m in sim.GetResultMesh()]
+    meshes = simulate(job, 0.5, op.ClearanceHeight.Value)
     box = stock.BoundBox
     xs = [box.XMin + 0.5 + 2 * i for i in range(int(box.XLength / 2) - 1)]
     ys = [box.YMin + 0.5 + 2 * j for j in range(int(box.YLength / 2) - 1)]

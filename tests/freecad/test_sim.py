@@ -27,6 +27,20 @@ def expand(cmds):
     return out
 
 
+def simulate(job, resolution, start_z):
+    """The job's operations in FreeCAD's voxel simulator, each with its tool
+    controller's own tool solid (as the simulator GUI takes it), from start_z
+    above the origin: the result meshes."""
+    sim = compat.voxel_simulator()
+    sim.BeginSimulation(job.Stock.Shape, resolution)
+    for o in job.Operations.Group:
+        sim.SetToolShape(o.ToolController.Tool.Shape, 0.05)
+        pos = FreeCAD.Placement(FreeCAD.Vector(0, 0, start_z), FreeCAD.Rotation())
+        for c in expand(o.Path.Commands):
+            pos = sim.ApplyCommand(pos, c)
+    return [Mesh.Mesh(m) for m in sim.GetResultMesh()]
+
+
 def height_map(meshes, xs, ys, top):
     """The simulated material's top at every grid point: the highest mesh hit of a
     downward ray (PathSim's outer and inner meshes are not closed solids)."""
@@ -46,17 +60,11 @@ def test_each_tool_cuts_its_own_plunges(doc, canned):
     job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False, diameters=(24, 14), canned=canned)
     stock = job.Stock.Shape
     resolution = 0.5
-    sim = compat.voxel_simulator()
-    sim.BeginSimulation(stock, resolution)
     for o in job.Operations.Group:
         tool = o.ToolController.Tool
         # The solid FreeCAD built for the bit is as wide as the bit says.
         assert abs(tool.Shape.BoundBox.XLength - float(tool.Diameter)) < 1e-6
-        sim.SetToolShape(tool.Shape, 0.05)  # this operation's own tool, as the GUI simulator takes it
-        pos = FreeCAD.Placement(FreeCAD.Vector(0, 0, op.ClearanceHeight.Value), FreeCAD.Rotation())
-        for c in expand(o.Path.Commands):
-            pos = sim.ApplyCommand(pos, c)
-    meshes = [Mesh.Mesh(m) for m in sim.GetResultMesh()]
+    meshes = simulate(job, resolution, op.ClearanceHeight.Value)
     # What the plan removes: down to the lowest stop of the disks over each point.
     plan = PlungeRough.plan_of(op)["plunges"]
     box = stock.BoundBox

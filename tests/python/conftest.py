@@ -29,3 +29,10 @@ def plunge(build_dir):
 
 
 SHAPES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "data", "shapes")
+
+
+def load_shape(name):
+    """A test shape's planner input (tests/data/shapes/NAME.json)."""
+    import json
+    with open(os.path.join(SHAPES, name + ".json")) as f:
+        return json.load(f)

@@ -1,22 +1,16 @@
 """The command-line tool on every test shape, and on bad input."""
-import copy
 import json
 import math
-import os
 import subprocess
 import xml.etree.ElementTree as ET
 
 import pytest
 
-from conftest import SHAPES
+from conftest import load_shape
 from geometry_check import assert_no_gouge, core_left, coverage, wall_stock_left
 
 SHAPE_NAMES = ["convex", "concave", "islands", "freeform", "neck"]
 
-
-def load(name):
-    with open(os.path.join(SHAPES, name + ".json")) as f:
-        return json.load(f)
 
 
 def run(cli, data, tmp_path, *extra):
@@ -27,7 +21,7 @@ def run(cli, data, tmp_path, *extra):
 
 @pytest.mark.parametrize("name", SHAPE_NAMES)
 def test_plans_every_shape(cli, tmp_path, name):
-    data = load(name)
+    data = load_shape(name)
     out, svg, nc = tmp_path / "plan.json", tmp_path / "plan.svg", tmp_path / "plan.nc"
     res = run(cli, data, tmp_path, "-o", str(out), "--svg", str(svg), "--gcode", str(nc))
     assert res.returncode == 0, res.stderr
@@ -61,7 +55,7 @@ def test_plans_every_shape(cli, tmp_path, name):
 
 
 def test_tool_paths_start_where_they_should(cli, tmp_path):
-    data = load("islands")
+    data = load_shape("islands")
     data["start"] = [200, 120]
     plan = json.loads(run(cli, data, tmp_path).stdout)
     plunges = plan["plunges"]
@@ -81,14 +75,14 @@ def test_tool_paths_start_where_they_should(cli, tmp_path):
 
 
 def test_stdout_is_the_default_output(cli, tmp_path):
-    res = run(cli, load("convex"), tmp_path)
+    res = run(cli, load_shape("convex"), tmp_path)
     assert res.returncode == 0
     assert json.loads(res.stdout)["stats"]["plunge_count"] > 0
 
 
 def test_automatic_tools_on_stdout_give_valid_json(cli, tmp_path):
     # The tool choice's reasoning goes to standard error: standard output stays the plan.
-    data = load("neck")
+    data = load_shape("neck")
     data["tool_library"] = [{"diameter": d} for d in (20, 16, 12, 8, 6)]
     data["tools"] = "auto"
     res = run(cli, data, tmp_path)
@@ -100,13 +94,13 @@ def test_automatic_tools_on_stdout_give_valid_json(cli, tmp_path):
 
 
 def test_same_input_same_plan(cli, tmp_path):
-    a = json.loads(run(cli, load("islands"), tmp_path).stdout)
-    b = json.loads(run(cli, load("islands"), tmp_path).stdout)
+    a = json.loads(run(cli, load_shape("islands"), tmp_path).stdout)
+    b = json.loads(run(cli, load_shape("islands"), tmp_path).stdout)
     assert a["plunges"] == b["plunges"]
 
 
 def mutate(path, value):
-    data = load("islands")
+    data = load_shape("islands")
     node = data
     for key in path[:-1]:
         node = node[key]
@@ -162,7 +156,7 @@ def test_missing_file_and_bad_usage(cli, tmp_path):
 
 
 def hostile(name, change):
-    data = load(name)
+    data = load_shape(name)
     change(data)
     return data
 
@@ -201,4 +195,4 @@ def test_tool_too_large_is_left_out(cli, tmp_path):
     plan = json.loads(out.read_text())
     assert any("T9 (400 mm)" in w for w in plan["warnings"]), plan.get("warnings")
     assert all(p["tool_id"] != 9 for p in plan["plunges"])
-    assert_no_gouge(load("convex"), plan)
+    assert_no_gouge(load_shape("convex"), plan)

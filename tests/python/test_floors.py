@@ -7,7 +7,7 @@ import subprocess
 
 import pytest
 
-from conftest import SHAPES
+from conftest import SHAPES, load_shape
 
 DATA = os.path.dirname(SHAPES)
 EXPRESSION = "-25 + 4*cos(0.06*x+0.5) + 3*sin(0.08*y+1) + 6*exp(-((x-150)^2+(y-40)^2)/200)"
@@ -17,10 +17,6 @@ def floor_py(x, y):
     return (-25 + 4 * math.cos(0.06 * x + 0.5) + 3 * math.sin(0.08 * y + 1)
             + 6 * math.exp(-((x - 150) ** 2 + (y - 40) ** 2) / 200))
 
-
-def load(name):
-    with open(os.path.join(SHAPES, name + ".json")) as f:
-        return json.load(f)
 
 
 def disk_max(f, cx, cy, r, h=0.4):
@@ -39,7 +35,7 @@ def disk_max(f, cx, cy, r, h=0.4):
 
 
 def test_expression_floor_depths(plunge):
-    data = load("islands")
+    data = load_shape("islands")
     data["floor"] = {"expression": EXPRESSION}
     plan = plunge.plan(data)
     allowance = data["allowance"]["floor"]
@@ -53,7 +49,7 @@ def test_expression_floor_depths(plunge):
 
 
 def test_ball_and_bull_tools(plunge):
-    data = load("convex")
+    data = load_shape("convex")
     data["floor"] = {"expression": "-20 + 0.05*x"}
     data["tools"] = [{"diameter": 20, "shape": "ball"}, {"diameter": 12, "shape": "bull", "corner_radius": 2},
                      {"diameter": 6}]
@@ -123,7 +119,7 @@ def test_relative_brep_names_start_where_the_input_is(cli, plunge, tmp_path, mon
     ({"z": -5, "expression": "x"}, "exactly one"),
 ])
 def test_bad_floors(cli, tmp_path, floor, message):
-    data = load("convex")
+    data = load_shape("convex")
     data["floor"] = floor
     src = tmp_path / "in.json"
     src.write_text(json.dumps(data))

@@ -1,19 +1,13 @@
 """The pybind11 module under Debian's python3, the interpreter FreeCAD embeds."""
-import json
 import re
 import math
-import os
 import sys
 
 import pytest
 
-from conftest import SHAPES
+from conftest import load_shape
 from geometry_check import assert_no_gouge, core_left, coverage
 
-
-def load(name):
-    with open(os.path.join(SHAPES, name + ".json")) as f:
-        return json.load(f)
 
 
 def test_runs_under_debians_python(plunge):
@@ -34,7 +28,7 @@ def test_runs_under_debians_python(plunge):
 
 
 def test_plan_contract(plunge):
-    data = load("concave")
+    data = load_shape("concave")
     plan = plunge.plan(data)
     assert set(plan) >= {"plunges", "stats"}
     assert set(plan["stats"]) >= {"plunge_count", "per_tool", "region_area", "accessible_area", "covered_area",
@@ -72,7 +66,7 @@ def test_tuples_and_defaults(plunge):
     ({"allowance": {"radial": 1e308}}, "allowance.radial 1.000e+308 mm is beyond"),
 ])
 def test_bad_input_raises_value_error(plunge, change, message):
-    data = load("islands")
+    data = load_shape("islands")
     data.update(change)
     with pytest.raises(ValueError, match=re.escape(message)):
         plunge.plan(data)
@@ -113,10 +107,10 @@ def test_tour_methods_and_seed(plunge):
 
 
 def test_plan_sequencing_option(plunge):
-    data = load("convex")
+    data = load_shape("convex")
     data["sequencing"] = "annealing"
     annealed = plunge.plan(data)
-    default = plunge.plan(load("convex"))
+    default = plunge.plan(load_shape("convex"))
     assert len(annealed["plunges"]) == len(default["plunges"])
     assert annealed["stats"]["travel_length"] > 0
     data["sequencing"] = "ants"
@@ -126,7 +120,7 @@ def test_plan_sequencing_option(plunge):
 
 def test_progress_is_reported_and_the_plan_unchanged(plunge):
     seen = []
-    data = load("islands")
+    data = load_shape("islands")
     plan = plunge.plan(data, progress=lambda f, stage: seen.append((f, stage)))
     assert len(seen) >= 3 and seen[0] == (0.0, "checking the pocket")
     assert all(a[0] <= b[0] for a, b in zip(seen, seen[1:])) and seen[-1][0] <= 1.0
@@ -141,10 +135,10 @@ def test_progress_cancels(plunge):
         return False
 
     with pytest.raises(ValueError, match="planning cancelled"):
-        plunge.plan(load("islands"), progress=stop)
+        plunge.plan(load_shape("islands"), progress=stop)
     assert len(calls) == 1
     with pytest.raises(ValueError, match="progress: expected a callable"):
-        plunge.plan(load("islands"), progress=3)
+        plunge.plan(load_shape("islands"), progress=3)
 
 
 def test_progress_exception_goes_through(plunge):
@@ -155,7 +149,7 @@ def test_progress_exception_goes_through(plunge):
         raise Stop()
 
     with pytest.raises(Stop):
-        plunge.plan(load("islands"), progress=boom)
+        plunge.plan(load_shape("islands"), progress=boom)
 
 
 def test_ctrl_c_interrupts_a_long_plan(plunge):
@@ -167,7 +161,7 @@ def test_ctrl_c_interrupts_a_long_plan(plunge):
     timer.start()
     try:
         with pytest.raises(KeyboardInterrupt):
-            plunge.plan(load("benchmark"))
-            plunge.plan(load("benchmark"))  # in case the first ended before the timer
+            plunge.plan(load_shape("benchmark"))
+            plunge.plan(load_shape("benchmark"))  # in case the first ended before the timer
     finally:
         timer.cancel()

@@ -55,30 +55,32 @@ def errors(validator, data):
     return [e.message for e in validator.iter_errors(data)]
 
 
-@pytest.mark.parametrize("path", INPUTS, ids=os.path.basename)
-def test_bundled_inputs_are_valid_and_plan_to_valid_output(cli, input_schema, output_schema, tmp_path, path):
-    with open(path) as f:
-        data = json.load(f)
+def assert_valid_plan(cli, input_schema, output_schema, tmp_path, data):
+    """A valid input that plans to a valid output; returns the output."""
     assert not errors(input_schema, data)
     run, out = plan(cli, data, tmp_path)
     assert run.returncode == 0, run.stderr
     assert not errors(output_schema, out)
+    return out
+
+
+@pytest.mark.parametrize("path", INPUTS, ids=os.path.basename)
+def test_bundled_inputs_are_valid_and_plan_to_valid_output(cli, input_schema, output_schema, tmp_path, path):
+    with open(path) as f:
+        assert_valid_plan(cli, input_schema, output_schema, tmp_path, json.load(f))
 
 
 @pytest.mark.parametrize("extra", [
     {"tools": "auto", "tool_library": [{"diameter": 16}, {"diameter": 10}, {"diameter": 6}]},
     {"strategy": "grid", "grid": {"pattern": "square", "step": 0.6}},
-    {"floor": {"expression": "-10 + 0.02*x"}, "allowance": {"radial": 0.2, "floor": 0.1}},
+    {"floor": {"expression": "-10 + 0.02*x"}, "allowance": {"radial": 0.2, "floor": 0.1}, "final_depth": -9.5},
     {"islands": [[[25, 15], [35, 15], [30, 25]]], "start": [60, 40], "sequencing": "annealing", "seed": 3},
 ], ids=["auto", "grid", "expression", "islands"])
 def test_optional_features_are_valid_and_plan_to_valid_output(cli, input_schema, output_schema, tmp_path, extra):
     data = dict(small(), **extra)
     if extra.get("tools") == "auto":
         data["tools"] = "auto"
-    assert not errors(input_schema, data)
-    run, out = plan(cli, data, tmp_path)
-    assert run.returncode == 0, run.stderr
-    assert not errors(output_schema, out)
+    out = assert_valid_plan(cli, input_schema, output_schema, tmp_path, data)
     if "tool_library" in extra:
         assert out["tool_selection"]["chosen"]
 

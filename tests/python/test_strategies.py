@@ -1,21 +1,16 @@
 """Automatic plunger selection and the grid baseline, through the CLI and the module."""
 import json
-import os
 import subprocess
 
 import pytest
 
-from conftest import SHAPES
+from conftest import load_shape
 from geometry_check import assert_no_gouge, coverage
 
 SHAPE_NAMES = ["convex", "concave", "islands", "freeform", "neck"]
 LIBRARY = [{"diameter": d, "id": i + 1, "feed": f}
            for i, (d, f) in enumerate([(32, 120), (25, 150), (20, 150), (16, 180), (12, 200), (8, 250), (6, 300)])]
 
-
-def load(name):
-    with open(os.path.join(SHAPES, name + ".json")) as f:
-        return json.load(f)
 
 
 def auto(data):
@@ -28,7 +23,7 @@ def auto(data):
 
 @pytest.mark.parametrize("name", ["neck", "islands"])
 def test_auto_selection_cli_prints_its_reasoning(cli, tmp_path, name):
-    data = auto(load(name))
+    data = auto(load_shape(name))
     src, out = tmp_path / "in.json", tmp_path / "plan.json"
     src.write_text(json.dumps(data))
     res = subprocess.run([cli, "plan", str(src), "-o", str(out), "--gcode", str(tmp_path / "p.nc")],
@@ -58,11 +53,11 @@ def test_auto_selection_cli_prints_its_reasoning(cli, tmp_path, name):
 
 
 def test_neck_shape_gets_a_neck_tool(plunge):
-    plan = plunge.plan(auto(load("neck")))
+    plan = plunge.plan(auto(load_shape("neck")))
     sel = plan["tool_selection"]
     assert sel["necks"], "the neck shape's neck is found"
     width = min(n["width"] for n in sel["necks"])
-    radial = load("neck")["allowance"]["radial"]
+    radial = load_shape("neck")["allowance"]["radial"]
     neck_tool = max(t["diameter"] for t in LIBRARY if t["diameter"] <= width - 2 * radial)
     assert neck_tool in sel["candidates"]
     assert len(sel["subregions"]) >= 2
@@ -71,7 +66,7 @@ def test_neck_shape_gets_a_neck_tool(plunge):
 
 def test_auto_selection_to_stdout_is_valid_json(cli, tmp_path):
     """The default output is standard output: the plan alone, the reasoning on stderr."""
-    data = auto(load("neck"))
+    data = auto(load_shape("neck"))
     src = tmp_path / "in.json"
     src.write_text(json.dumps(data))
     res = subprocess.run([cli, "plan", str(src)], capture_output=True, text=True, timeout=600)
@@ -81,7 +76,7 @@ def test_auto_selection_to_stdout_is_valid_json(cli, tmp_path):
 
 
 def test_auto_bad_input(plunge):
-    data = auto(load("convex"))
+    data = auto(load_shape("convex"))
     with pytest.raises(ValueError, match="tool_library"):
         plunge.plan(dict(data, tool_library=[]))
     with pytest.raises(ValueError, match="tool_library"):
@@ -95,13 +90,13 @@ def test_auto_bad_input(plunge):
 @pytest.mark.parametrize("name", SHAPE_NAMES)
 @pytest.mark.parametrize("pattern", ["square", "honeycomb"])
 def test_grid_plans_every_shape(plunge, name, pattern):
-    data = dict(load(name), strategy="grid", grid={"pattern": pattern})
+    data = dict(load_shape(name), strategy="grid", grid={"pattern": pattern})
     plan = plunge.plan(data)
     assert plan["stats"]["plunge_count"] == len(plan["plunges"]) > 0
     assert_no_gouge(data, plan)
     measured = coverage(data, plan)
     assert measured == pytest.approx(plan["stats"]["coverage"], abs=2e-3)
-    packed = plunge.plan(load(name))
+    packed = plunge.plan(load_shape(name))
     # The baseline leaves pieces of the core; the packing with its 1 mm wall band none, in fewer plunges.
     assert packed["stats"]["core_coverage"] > plan["stats"]["core_coverage"]
     if pattern == "honeycomb":
@@ -109,7 +104,7 @@ def test_grid_plans_every_shape(plunge, name, pattern):
 
 
 def test_grid_bad_input(plunge):
-    data = load("convex")
+    data = load_shape("convex")
     with pytest.raises(ValueError, match="grid.pattern"):
         plunge.plan(dict(data, strategy="grid", grid={"pattern": "hex"}))
     with pytest.raises(ValueError, match="grid.step"):
