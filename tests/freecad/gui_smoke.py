@@ -82,6 +82,18 @@ def wait(seconds, done=lambda: False):
         time.sleep(0.05)
 
 
+def plunge_ops(job):
+    return [o for o in job.Operations.Group if o.Name.startswith("PlungeRough")]
+
+
+def panel_of(op):
+    """The operation's task panel once FreeCAD has opened it (it plans first,
+    which takes longer on a loaded machine): waits up to 60 s."""
+    wait(60, lambda: getattr(op.ViewObject.Proxy, "panel", None) is not None)
+    wait(1)
+    return op.ViewObject.Proxy.panel
+
+
 def screenshot(name):
     # The screen, not mw.grab(): the 3D view is OpenGL and only the screen has it.
     for _ in range(10):
@@ -194,8 +206,7 @@ def example_document():
     plan_before = PlungeRough.plan_of(op)["plunges"]
     # Double-click: the operation's own panel; Cancel leaves it as it was.
     FreeCADGui.ActiveDocument.setEdit(op.Name)
-    wait(1)
-    panel = op.ViewObject.Proxy.panel
+    panel = panel_of(op)
     result["example"]["panel"] = panel is not None and panel.featurePages[-1].form.findChild(
         QtGui.QListWidget, "toolControllers") is not None
     click_task_button("Cancel")
@@ -314,10 +325,10 @@ def new_job():
     FreeCADGui.Selection.addSelection(doc.Name, clone.Name, face)
     answer["tc"] = tcs[0].Label
     action.trigger()  # as the user clicks it
-    wait(1)
+    wait(60, lambda: plunge_ops(job))
     step("command run")
-    op = next(o for o in job.Operations.Group if o.Name.startswith("PlungeRough"))
-    panel = op.ViewObject.Proxy.panel
+    op = plunge_ops(job)[0]
+    panel = panel_of(op)
     page = panel.featurePages[-1]
     items = [page.form.toolControllers.item(i) for i in range(page.form.toolControllers.count())]
     result["plunger_list"] = [(i.text(), i.checkState() == QtCore.Qt.Checked) for i in items]
@@ -348,8 +359,7 @@ def new_job():
     names = sorted(o.Name for o in doc.Objects)
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.ActiveDocument.setEdit(op.Name)
-    wait(1)
-    page = op.ViewObject.Proxy.panel.featurePages[-1]
+    page = panel_of(op).featurePages[-1]
     for i in range(page.form.toolControllers.count()):
         item = page.form.toolControllers.item(i)
         if "6 mm plunger" in item.text():
