@@ -334,9 +334,14 @@ void floorStock(const PlanInput& in, const Region& region, const FloorSurface& f
   out.stats.volumeLeft = r.volumeLeft;
   if (sculptured && in.maxFloorStock > 0.0 && r.maxFloorStock > in.maxFloorStock + 1e-6) {
     std::ostringstream w;
+    // Plunges held at the final depth leave that stock by request, not for want of a tool.
+    const bool held = in.finalDepth && std::any_of(out.plunges.begin(), out.plunges.end(), [&](const Plunge& p) {
+                        return p.z <= *in.finalDepth + in.floorAllowance;
+                      });
     w << std::fixed << std::setprecision(2) << "up to " << r.maxFloorStock
-      << " mm of stock stay above the floor, more than the " << in.maxFloorStock
-      << " mm asked for: no plunger of the job reaches lower there (a smaller or ball-end tool would)";
+      << " mm of stock stay above the floor, more than the " << in.maxFloorStock << " mm asked for: "
+      << (held ? "the final depth stops plunges above the floor"
+               : "no plunger of the job reaches lower there (a smaller or ball-end tool would)");
     out.warnings.push_back(w.str());
   }
   if (!sculptured) return;

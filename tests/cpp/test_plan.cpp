@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "plunge/error.hpp"
 #include "plunge/io.hpp"
 #include "plunge/limits.hpp"
@@ -220,6 +222,11 @@ TEST(Plan, NoPlungeStopsBelowTheFinalDepth) {
     held += q.z == -8.0 + in.floorAllowance;
   }
   EXPECT_GT(held, 0);  // the deep half stops at the final depth
+  // The stock left below the final depth is said to be the final depth's.
+  const auto why = std::find_if(p.warnings.begin(), p.warnings.end(),
+                                [](const std::string& w) { return w.find("stay above the floor") != std::string::npos; });
+  ASSERT_NE(why, p.warnings.end());
+  EXPECT_NE(why->find("the final depth stops plunges"), std::string::npos) << *why;
   // Plunges over the floor above it keep their own stop heights.
   in.finalDepth.reset();
   const Plan free = plan(in);
