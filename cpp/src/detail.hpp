@@ -36,7 +36,7 @@ inline std::string formatPoint(Vec2 p) {
   return formatPoint(x, 2);
 }
 
-// An axis-aligned bounding box grown point by point (empty: lo above hi).
+// An axis-aligned bounding box grown point by point.
 struct Bounds {
   Vec2 lo{kInf, kInf};
   Vec2 hi{-kInf, -kInf};
@@ -47,7 +47,6 @@ struct Bounds {
   void add(const Loop& loop) {
     for (Vec2 p : loop) add(p);
   }
-  bool empty() const { return lo.x > hi.x; }
 };
 
 // Where segment a-b crosses the horizontal line at y, by the half-open rule (a

@@ -24,6 +24,7 @@
 #include <muParser.h>
 #include <sstream>
 
+#include "detail.hpp"
 #include "plunge/error.hpp"
 #include "plunge/optimizer.hpp"
 
@@ -31,7 +32,7 @@ namespace plunge {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+using detail::kNaN;
 
 int samplesFor(double extent, double spacing, int lo, int hi) {
   return std::clamp(static_cast<int>(std::ceil(extent / spacing)) + 1, lo, hi);

@@ -147,10 +147,6 @@ void checkObject(const json& j, const char* key, const std::set<std::string>& ke
   onlyKeys(o, keys, std::string(key) + ": ");
 }
 
-}  // namespace
-
-namespace {
-
 void readTools(const json& j, PlanInput& in) {
   if (j.contains("tools") && j["tools"].is_string() && j["tools"].get<std::string>() == "auto") {
     in.autoTools = true;
@@ -432,10 +428,6 @@ std::string stockMapSvg(const StockMap& m, double limit) {
   s << "</g>\n";
   return s.str();
 }
-
-}  // namespace
-
-namespace {
 
 // The plan's picture, layer by layer (planToSvg); y is drawn downwards.
 class SvgPicture {

@@ -134,7 +134,6 @@ class ToolSetSearch {
     if (!bestPlan_) throw Error("tool selection: no tool set could be planned");
     return std::move(*bestPlan_);
   }
-  const std::vector<double>& chosen() const { return chosen_; }
   size_t setCount() const { return size_t{1} << others_.size(); }
 
  private:
@@ -188,7 +187,7 @@ class ToolSetSearch {
     sel_.sets.push_back(r);
     if (r.weighted < best_) {
       best_ = r.weighted;
-      chosen_ = r.diameters;
+      sel_.chosen = r.diameters;
       bestPlan_ = std::move(p);
     }
   }
@@ -215,7 +214,6 @@ class ToolSetSearch {
   double perPlungeLB_ = std::numeric_limits<double>::infinity();  // minutes
   double best_ = std::numeric_limits<double>::infinity();
   std::optional<Plan> bestPlan_;
-  std::vector<double> chosen_;
   std::vector<double> included_;
   int planned_ = 0;  // tool sets planned so far, for the progress
 };
@@ -244,7 +242,6 @@ Plan planWithToolSelection(const PlanInput& in, const ToolSetPlanner& planSet, c
   sel.candidates = candidateTools(in, sel);
   ToolSetSearch search(in, region, sel, planSet, progress);
   Plan out = search.run();
-  sel.chosen = search.chosen();
   reportSearch(in, sel, search.setCount());
   out.selection = std::move(sel);
   return out;
