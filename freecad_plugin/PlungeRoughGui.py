@@ -5,6 +5,7 @@ so it brings its own view provider (icon, face selection gate) and creation
 function; the page is loaded from resources/panels/PlungeRoughEdit.ui.
 """
 import os
+import weakref
 
 import FreeCAD
 import FreeCADGui
@@ -142,12 +143,18 @@ class ViewProvider(PathOpGui.ViewProvider):
 
     def setupTaskPanel(self, panel):
         super().setupTaskPanel(panel)
-        reject = panel.reject
+        # Held weakly: a closure over the panel (or its bound reject) stored on
+        # the panel is a reference cycle, which keeps the closed panel's Qt
+        # wrappers alive until a later garbage collection; collected then, in
+        # the middle of opening another panel, they broke it ("Internal C++
+        # object already deleted" in FreeCAD's base geometry page).
+        ref = weakref.ref(panel)
 
         def rejectAndTidy(resetEdit=True):
             # Cancel rolls the operation back; companions made while the panel
             # was open (ticked plungers) or of a removed new operation go too.
-            result = reject(resetEdit)
+            this = ref()
+            result = type(this).reject(this, resetEdit)
             PlungeRough.removeOrphans(FreeCAD.ActiveDocument)
             return result
 
