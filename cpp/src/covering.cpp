@@ -31,6 +31,12 @@ constexpr double kBandMargin = 0.05;             // mm, see Coverer::run
 // Corner placements pair the walls nearest a point, at most this many: with a
 // tool as large as the pocket every wall is "in reach" and all pairs would take minutes.
 constexpr size_t kCornerWalls = 64;
+// A piece of material with more vertices than this, spanning more than one
+// cell of 4 rMax, is kept as one piece per cell: Clipper's sweep costs the
+// edges every scanline crosses, so each plunge cut from a long strip along a
+// wall (thousands of vertices, all crossed by every scanline when it runs
+// along x) would cost the whole strip squared.
+constexpr size_t kSplitVertices = 1000;
 
 // `area` minus the disks. Done tile by tile: Clipper's sweep slows down with
 // the number of edges a scanline crosses, and the uncovered part is small, so
@@ -367,11 +373,41 @@ class Coverer {
   }
 
   void addPiece(clip::Paths poly) {
+    const bool pin = core_ || !touchesBoundary(poly);
+    addSplit(std::move(poly), pin);
+  }
+
+  // A large piece (kSplitVertices) is cut in halves across its longer side
+  // until each part has few vertices or fits in a cell of 4 rMax. The cuts
+  // are no walls: the parts keep the piece's pin state.
+  void addSplit(clip::Paths poly, bool pin) {
+    size_t vertices = 0;
+    for (const clip::Path& q : poly) vertices += q.size();
+    Vec2 lo, hi;
+    clip::bounds(poly, lo, hi);
+    const double cell = 4 * rMax_;
+    if (vertices <= kSplitVertices || (hi.x - lo.x <= cell && hi.y - lo.y <= cell)) {
+      addPart(std::move(poly), pin);
+      return;
+    }
+    const clip::IntPoint a = clip::toInt(lo - Vec2{1, 1}), b = clip::toInt(hi + Vec2{1, 1}),
+                         m = clip::toInt(0.5 * (lo + hi));
+    const bool alongX = hi.x - lo.x >= hi.y - lo.y;
+    const clip::Path first = alongX ? clip::Path{a, {m.X, a.Y}, {m.X, b.Y}, {a.X, b.Y}}
+                                    : clip::Path{a, {b.X, a.Y}, {b.X, m.Y}, {a.X, m.Y}};
+    const clip::Path second = alongX ? clip::Path{{m.X, a.Y}, {b.X, a.Y}, b, {m.X, b.Y}}
+                                     : clip::Path{{a.X, m.Y}, {b.X, m.Y}, b, {a.X, b.Y}};
+    for (const clip::Path& half : {first, second})
+      for (clip::Paths& part : clip::components(clip::boolean(poly, {half}, ClipperLib::ctIntersection)))
+        addSplit(std::move(part), pin);
+  }
+
+  void addPart(clip::Paths poly, bool pin) {
     Piece p;
     p.area = clip::area(poly);
     if (p.area <= 0.0) return;
     clip::bounds(poly, p.lo, p.hi);
-    p.pin = core_ || !touchesBoundary(poly);
+    p.pin = pin;
     p.alive = true;
     p.poly = std::move(poly);
     uncovered_ += p.area;

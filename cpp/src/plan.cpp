@@ -185,10 +185,11 @@ bool isSculptured(const PlanInput& in, const FloorSurface& floor) {
                                         [](const Tool& t) { return t.shape != CutterShape::Flat; });
 }
 
-// See placePlunges: a piece left by the packing larger than this many disks of
-// the next tool means packing that one instead (the test shapes leave at most
-// 61; a 150 mm plunger in the 600 x 400 mm benchmark 706, a 100 mm one 140).
-constexpr double kGreedyPiece = 200.0;
+// See placePlunges: more of the core out of the packed tool's reach than this
+// many disks of the next tool means packing that one instead (a 150 mm plunger
+// in the 600 x 400 mm benchmark leaves 650 disks of its 12 mm one, a 100 mm
+// one 110, a 10 mm one in an 80 x 60 mm pocket 2 of its 1 mm one).
+constexpr double kGreedyDisks = 200.0;
 
 // The depth solver's cells (depth.hpp): a quarter of the smallest tool's
 // diameter, but no finer than this fraction of the pocket's diagonal.
@@ -198,18 +199,19 @@ constexpr double kHexCellArea = 2.598076211353316;
 // Coverage short of min_coverage by less than this is rounding, not worth a warning.
 constexpr double kCoverageSlack = 1e-3;
 
-double largestPieceLeft(const Polygons& accessible, const std::vector<PackedDisk>& packed) {
+// The area of the core that neither the packed disks cut nor a tool of radius
+// r can reach (what smaller tools must cover).
+double coreOutOfReach(const Region& region, double r, double allowance, const Polygons& core,
+                      const std::vector<PackedDisk>& packed) {
   std::vector<Circle> disks;
   for (const PackedDisk& d : packed) disks.push_back({d.center, d.radius});
-  double largest = 0.0;
-  for (const Polygons& piece : poly::components(poly::subtract(accessible, poly::unionOfDisks(disks, 0.05))))
-    largest = std::max(largest, poly::area(piece));
-  return largest;
+  return poly::area(poly::subtract(poly::subtract(core, poly::unionOfDisks(disks, 0.05)),
+                                   accessibleRegion(region, r, allowance)));
 }
 
 // Packing and covering, or the grid: the plunge positions of every tool.
 CoverResult placePlunges(const PlanInput& in, const Region& region, const std::vector<double>& radii,
-                         const Polygons& accessible, const Progress& progress) {
+                         const Polygons& core, const Progress& progress) {
   if (in.strategy == Strategy::Grid) {
     GridOptions go;
     go.pattern = in.gridPattern;
@@ -235,15 +237,19 @@ CoverResult placePlunges(const PlanInput& in, const Region& region, const std::v
     if (in.maxWallStock <= 0.0) return coverRegion(region, radii, packMaxHoleDegree(region, radii, po), co);
     // With a wall band, only the largest tool is packed: the covering then uses a
     // smaller plunger only where the larger ones cannot reach the core. Unless
-    // the largest leaves a piece wider than kGreedyPiece disks of the next (a
-    // tool nearly as large as the pocket): then the next is packed instead, or
-    // the covering would place thousands of plunges one greedy step at a time.
+    // the largest leaves more of the core out of its reach than kGreedyDisks
+    // disks of the next (a tool nearly as large as the pocket): then the next is
+    // packed instead, or the covering would place thousands of plunges one
+    // greedy step at a time. (Not the whole core left: the largest tool covers
+    // what it reaches in few steps, and a much smaller next tool must not take
+    // over the pocket.)
     std::vector<PackedDisk> packed;
     for (size_t k = 0; k < radii.size(); ++k) {
       packed = packWithWallBand(region, radii[k], po);
       for (PackedDisk& d : packed) d.tool = static_cast<int>(k);
       if (k + 1 == radii.size() ||
-          largestPieceLeft(accessible, packed) <= kGreedyPiece * M_PI * radii[k + 1] * radii[k + 1])
+          coreOutOfReach(region, radii[k], in.radialAllowance, core, packed) <=
+              kGreedyDisks * M_PI * radii[k + 1] * radii[k + 1])
         break;
     }
     return coverRegion(region, radii, packed, co);
@@ -481,7 +487,7 @@ std::vector<CutDisk> placeAndDepth(const PlanInput& in, const Pocket& pocket, co
   std::vector<double> radii;
   for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
   progress.stage(0.05, "packing and covering");
-  cover = placePlunges(in, pocket.region, radii, pocket.accessible, progress);
+  cover = placePlunges(in, pocket.region, radii, pocket.core, progress);
   out.stats.regionArea = poly::area(allowedRegion(pocket.region, in.radialAllowance));
   progress.stage(0.75, "plunge depths");
   std::vector<CutDisk> disks = depthsOf(in, cover, depths, progress);

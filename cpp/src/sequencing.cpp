@@ -16,8 +16,17 @@ using namespace detail;
 
 namespace {
 
-constexpr double kEps = 1e-10;
+// Gains below this are rounding, not shorter tours (relative to the largest
+// length a gain is computed from: an open path's dummy constant is ~1e6 mm on
+// big jobs, where one unit in the last place is 1e-10 mm, and a threshold below
+// that lets two moves undo each other forever).
+constexpr double kRelEps = 1e-12;
 constexpr int kNeighbours = 10;
+// Simulated annealing makes 20 n moves per stage (the thesis) up to this many
+// points. A move reverses up to n / 2 positions, so beyond it the moves per
+// stage shrink by (kAnnealFull / n)^2, which bounds the work (about as much as
+// kAnnealFull points take, 1-2 s), and a local search polishes the tour.
+constexpr int kAnnealFull = 1500;
 
 // The tour as an array with positions; an open path is a closed tour through an
 // extra "dummy" node whose edges cost nothing (or, when the path must begin at a
@@ -34,6 +43,9 @@ class Tsp {
       b.add(pts);
       big_ = (norm(b.hi - b.lo) + 1.0) * (n_ + 1);
     }
+    Bounds all;
+    all.add(pts);
+    eps_ = 1e-10 + kRelEps * (std::max(big_, norm(all.hi - all.lo)) + norm(all.hi) + norm(all.lo));
     buildNeighbours();
   }
 
@@ -191,9 +203,10 @@ class Tsp {
 
   // The thesis's simulated annealing (section 4.3.1): random 2-opt moves, a
   // worse tour accepted with probability exp(-dE / T) (eq. 4.81), geometric
-  // cooling, stop when cold or when the best tour stops improving.
-  void anneal(std::mt19937_64& rng) {
-    if (m_ < 4) return;
+  // cooling, stop when cold or when the best tour stops improving. Returns
+  // whether it made fewer moves than the thesis (above kAnnealFull points).
+  bool anneal(std::mt19937_64& rng) {
+    if (m_ < 4) return false;
     std::uniform_real_distribution<double> u(0.0, 1.0);
     auto delta = [&](int i, int j) {  // reverse positions i+1 .. j
       const int a = t_[i], b = t_[(i + 1) % m_], c = t_[j], e = t_[(j + 1) % m_];
@@ -219,13 +232,14 @@ class Tsp {
         ++count;
       }
     }
-    if (count == 0) return;
+    if (count == 0) return false;
     const double t0 = (sum / count) / std::log(2.0);  // worse moves accepted half the time at first
     double temperature = t0, len = length(), bestLen = len;
     std::vector<int> bestT = t_;
     // Stop when cold, or frozen: three stages in a row accepting almost nothing.
     int frozen = 0;
-    const long long perStage = 20LL * m_;
+    const double shrink = std::min(1.0, static_cast<double>(kAnnealFull) / m_);
+    const long long perStage = std::max<long long>(100, std::llround(20.0 * m_ * shrink * shrink));
     while (temperature > 1e-5 * t0 && frozen < 3) {
       long long accepted = 0;
       for (long long k = 0; k < perStage; ++k) {
@@ -246,6 +260,7 @@ class Tsp {
       temperature *= 0.95;  // geometric cooling
     }
     setOrder(bestT);
+    return shrink < 1.0;
   }
 
   int dummy() const { return dummy_; }
@@ -318,7 +333,7 @@ class Tsp {
         const int e = dir == 0 ? succ(c) : pred(c);
         if (c == b || e == a) continue;
         const double gain = dab + d(c, e) - dac - d(b, e);
-        if (gain > kEps) {
+        if (gain > eps_) {
           apply2opt(a, b, c, e);
           push(a);
           return gain;
@@ -339,7 +354,7 @@ class Tsp {
         if (dir == 1) std::swap(s1, s2);  // s1 .. s2 in forward order
         const int p = pred(s1), nx = succ(s2);
         const double removeGain = d(p, s1) + d(s2, nx) - d(p, nx);
-        if (removeGain <= kEps) continue;
+        if (removeGain <= eps_) continue;
         auto inSeg = [&](int x) {
           for (int y = s1;; y = succ(y)) {
             if (y == x) return true;
@@ -355,7 +370,7 @@ class Tsp {
               if (succ(ee) == cc) std::swap(cc, ee);  // cc -> ee forward
               const double same = d(cc, s1) + d(s2, ee), flipped = d(cc, s2) + d(s1, ee);
               const double gain = removeGain - (std::min(same, flipped) - d(cc, ee));
-              if (gain <= kEps) continue;
+              if (gain <= eps_) continue;
               // The move as two or three 2-opt moves.
               apply2opt(p, s1, cc, ee);   // p-cc ... nx-s2 ... s1-ee
               apply2opt(p, cc, nx, s2);   // p-nx ... cc-s2 ... s1-ee
@@ -392,6 +407,7 @@ class Tsp {
   const std::vector<Vec2>& pts_;
   int n_, m_, dummy_ = -1, start_ = -1;
   double big_ = 0;
+  double eps_ = 0;  // a gain must exceed this (kRelEps)
   std::vector<std::vector<int>> nb_;
   std::vector<int> t_, pos_;
   std::deque<int> queue_;
@@ -447,7 +463,10 @@ std::vector<int> tour(const std::vector<Vec2>& points, bool closed, std::optiona
     Tsp tsp(points, !closed, closed ? -1 : startNode);
     tsp.greedyEdge();
     if (options.method == TourMethod::Annealing) {
-      tsp.anneal(rng);
+      if (tsp.anneal(rng)) {  // fewer moves than the thesis: polish
+        tsp.queueAll();
+        tsp.localSearch();
+      }
     } else {
       tsp.queueAll();
       tsp.localSearch();

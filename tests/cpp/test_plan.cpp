@@ -161,6 +161,25 @@ TEST(Plan, DeepBandsPackOnce) {
   }
 }
 
+// A much smaller second plunger cleans only what the largest cannot reach: it
+// used to take the whole pocket over (an 80 x 60 mm pocket, 10 mm and 1 mm
+// tools: 7342 plunges of the 1 mm one, none of the 10 mm one).
+TEST(Plan, ASmallSecondToolDoesNotTakeOver) {
+  PlanInput in = test::rectanglePocket(80, 60);
+  in.tools = {{10, 1, 100}, {6, 2, 100}};
+  const Plan usual = plan(in);
+  const int largest = usual.stats.perTool.at(0).count;
+  for (double small : {2.0, 1.0, 0.5}) {
+    in.tools[1].diameter = small;
+    const Plan p = plan(in);
+    ASSERT_EQ(p.stats.perTool.at(0).toolId, 1) << small;
+    EXPECT_GE(p.stats.perTool[0].count, 0.8 * largest) << small;
+    EXPECT_LT(p.stats.plungeCount, 2 * usual.stats.plungeCount) << small;
+    EXPECT_GT(p.stats.coreCoverage, 0.999) << small;
+    expectNoGouge(in, p);
+  }
+}
+
 // A band as wide as the pocket leaves nothing to cut: a clear error, not an empty plan.
 TEST(Plan, BandWiderThanThePocketIsAnError) {
   PlanInput in = square();

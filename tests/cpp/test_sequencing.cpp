@@ -90,6 +90,39 @@ TEST(Sequencing, NearTheRandomUniformOptimum) {
   EXPECT_LT(len, 1.08 * 0.7124 * std::sqrt(2000.0 * 100 * 100));
 }
 
+// An open path from a start, over a lattice of equal edges beside one far point:
+// the path's dummy constant is then ~1e7 mm, and swapping two equal edges gained
+// one rounding unit (2e-10 mm) both ways, so the local search never ended.
+TEST(Sequencing, RoundingIsNoGain) {
+  std::vector<Vec2> pts;
+  for (int j = 0; j < 10; ++j)
+    for (int i = 0; i < 10; ++i) pts.push_back({0.3 * i + 0.15 * (j % 2), 0.3 * j * std::sqrt(3.0) / 2});
+  pts.push_back({1e5, 1e5});
+  for (TourMethod m : {TourMethod::LocalSearch, TourMethod::Annealing}) {
+    TourOptions opt;
+    opt.method = m;
+    const auto order = tour(pts, false, Vec2{0, 0}, opt);
+    ASSERT_TRUE(isPermutation(order, pts.size()));
+    EXPECT_EQ(order.front(), 0);
+    EXPECT_EQ(order.back(), 100);  // the far point last
+    // The lattice in about one edge per point: 99 edges of 0.3 mm (a few longer).
+    EXPECT_LT(tourLength(pts, order, false) - dist(pts[order[99]], pts[100]), 1.1 * 99 * 0.3);
+  }
+}
+
+// Annealing beyond kAnnealFull points makes fewer moves per stage (its moves
+// cost O(n)) and then a local search: as short as the default method's path.
+TEST(Sequencing, LargeAnnealingStaysShort) {
+  std::mt19937 rng(5);
+  const auto pts = randomPoints(rng, 6000);
+  TourOptions opt;
+  opt.method = TourMethod::Annealing;
+  const auto annealed = tour(pts, false, Vec2{0, 0}, opt);
+  ASSERT_TRUE(isPermutation(annealed, pts.size()));
+  const double local = tourLength(pts, tour(pts, false, Vec2{0, 0}), false);
+  EXPECT_LT(tourLength(pts, annealed, false), 1.05 * local);
+}
+
 TEST(Sequencing, CollinearPointsGoInOrder) {
   std::vector<Vec2> pts;
   for (int i : {5, 2, 9, 0, 7, 3, 8, 1, 6, 4, 11, 10}) pts.push_back({static_cast<double>(i), 0});
