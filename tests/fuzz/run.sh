@@ -8,6 +8,9 @@
 #    instrumentation make runs about 17 times slower: about a minute without
 #    them) or past 4 GB fails. What it finds is written to
 #    build-sanitize/fuzz-findings/: add it to tests/fuzz/regressions/.
+#    FUZZ_SEED (default 1) fixes libFuzzer's mutations, so that a run that
+#    fails in CI fails again here; FUZZ_SEED=0 takes a random seed (longer,
+#    exploring runs: FUZZ_SEED=0 FUZZ_SECONDS=3600).
 set -eu
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 # The project's packages (setup.sh) and Debian's clang with its sanitizer and
@@ -31,6 +34,6 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 corpus="$B/fuzz-corpus"
 findings="$B/fuzz-findings"
 mkdir -p "$corpus" "$findings"
-"$B/tests/fuzz_plan" -max_total_time="${FUZZ_SECONDS:-240}" -timeout=900 -rss_limit_mb=4096 \
+"$B/tests/fuzz_plan" -max_total_time="${FUZZ_SECONDS:-240}" -timeout=900 -rss_limit_mb=4096 -seed="${FUZZ_SEED:-1}" \
   -dict="$ROOT/tests/fuzz/plan.dict" -artifact_prefix="$findings/" -print_final_stats=1 \
   "$corpus" "$ROOT/tests/fuzz/corpus" "$ROOT/tests/fuzz/regressions"
