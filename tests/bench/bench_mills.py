@@ -32,9 +32,12 @@ def plan(path, limit, tmp):
         json.dump(data, f)
     out = os.path.join(tmp, "plan.json")
     try:
-        subprocess.run([CLI, "plan", src, "-o", out], check=True, stderr=subprocess.DEVNULL)
+        r = subprocess.run([CLI, "plan", src, "-o", out], stderr=subprocess.PIPE, text=True)
     finally:
         os.remove(src)
+    if r.returncode == 2:  # refused before planning (limits: max_plunges)
+        return None
+    r.check_returncode()
     return json.load(open(out))["stats"]
 
 
@@ -52,8 +55,8 @@ def main():
             runs = [plan(SHAPES[name], limit, tmp) for limit in (None, 0.5, 0.25)]
             free = runs[0]
             print("| %s | %s | %s | %.1f | %.1f min (%.0f %%) |" % (
-                name, " / ".join(str(s["plunge_count"]) for s in runs),
-                " / ".join("%.1f" % s["estimated_minutes"] for s in runs), free["minutes_at_safe_height"],
+                name, " / ".join(str(s["plunge_count"]) if s else "refused" for s in runs),
+                " / ".join("%.1f" % s["estimated_minutes"] if s else "-" for s in runs), free["minutes_at_safe_height"],
                 free["minutes_at_safe_height"] - free["estimated_minutes"],
                 100 * (1 - free["estimated_minutes"] / free["minutes_at_safe_height"])), flush=True)
 
