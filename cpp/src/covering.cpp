@@ -31,8 +31,8 @@ constexpr double kBandMargin = 0.05;             // mm, see Coverer::run
 // Corner placements pair the walls nearest a point, at most this many: with a
 // tool as large as the pocket every wall is "in reach" and all pairs would take minutes.
 constexpr size_t kCornerWalls = 64;
-// A piece of material with more vertices than this, spanning more than one
-// cell of 4 rMax, is kept as one piece per cell: Clipper's sweep costs the
+// A piece of material with more vertices than this, wider than a cell of
+// 4 rMax, is kept cut into parts (Coverer::addSplit): Clipper's sweep costs the
 // edges every scanline crosses, so each plunge cut from a long strip along a
 // wall (thousands of vertices, all crossed by every scanline when it runs
 // along x) would cost the whole strip squared.
