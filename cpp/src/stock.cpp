@@ -13,6 +13,8 @@ using namespace detail;
 namespace {
 
 constexpr size_t kTargetSamples = 200000;
+// mm: how far a bound of a stop height may sit above the optimizer's value (depth.hpp) before it counts.
+constexpr double kBoundSlack = 1e-6;
 
 // x moved away from the walls closer than `clearance` (a few steps: corners).
 Vec2 pushOffWalls(const Region& region, Vec2 x, double clearance) {
@@ -121,6 +123,25 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
     const double rho = dist(grid.at(k), d.center) + h;
     return rho <= c.radius && d.z + cutterProfile(c, rho) <= grid.floorAt(k) + target;
   };
+  // A necessary condition, before the exact stop height (an optimization, up
+  // to a millisecond): the plunge stops no lower than the floor at any sample
+  // under it less the cutter's profile there, so a few samples under the disk
+  // (its centre, 8 points at 0.9 r) bound its stop height from below. Over a
+  // floor too steep for the limit (no plunger can meet it) this skips nearly
+  // every stop height.
+  auto mayFix = [&](Vec2 c, size_t t, size_t k) {
+    const Cutter& cut = cutters[t];
+    double low = -std::numeric_limits<double>::infinity();
+    for (int a = -1; a < 8; ++a) {
+      const Vec2 x = a < 0 ? c : c + Vec2{std::cos(a * M_PI / 4), std::sin(a * M_PI / 4)} * (0.9 * cut.radius);
+      size_t q;
+      if (!grid.nearest(x, q) || !grid.valid(q)) continue;
+      const double rho = dist(grid.at(q), c);
+      if (rho <= cut.radius) low = std::max(low, grid.floorAt(q) - cutterProfile(cut, rho));
+    }
+    const double rho = dist(grid.at(k), c) + h;
+    return low + cutterProfile(cut, rho) <= grid.floorAt(k) + target + kBoundSlack;
+  };
   for (size_t k : over) {
     opt.progress.tick();
     if (!isOver[k]) continue;
@@ -141,6 +162,7 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
         // Only a disk over the sample's whole neighbourhood can fix it (`fixes`):
         // others are not worth a stop height.
         if (dist(c, p) + h > r || !region.diskFits(c, clearance)) continue;
+        if (!mayFix(c, t, k)) continue;
         CutDisk d{c, static_cast<int>(t), 0.0};
         try {
           d.z = depths.stopHeight(c, cutters[t]) + opt.floorAllowance;

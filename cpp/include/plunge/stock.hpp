@@ -65,6 +65,13 @@ class StockGrid {
     for (long j = j0; j <= j1; ++j)
       for (long i = i0; i <= i1; ++i) f(static_cast<size_t>(j) * nx_ + static_cast<size_t>(i));
   }
+  // The sample nearest to p, if p lies on the raster (false outside it).
+  bool nearest(Vec2 p, size_t& k) const {
+    const long i = std::lround((p.x - origin_.x) / spacing_), j = std::lround((p.y - origin_.y) / spacing_);
+    if (i < 0 || j < 0 || i >= static_cast<long>(nx_) || j >= static_cast<long>(ny_)) return false;
+    k = static_cast<size_t>(j) * nx_ + static_cast<size_t>(i);
+    return true;
+  }
   size_t size() const { return floor_.size(); }
   size_t nx() const { return nx_; }
   size_t ny() const { return ny_; }
