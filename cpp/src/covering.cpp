@@ -478,7 +478,7 @@ class Coverer {
     size_t vertices = 0;
     for (const clip::Path& q : p.poly) vertices += q.size();
     if (vertices <= 300) return;
-    const double cell = 4 * rMax_;
+    const double cell = 4 * std::sqrt(rMin_ * rMax_);
     for (double y = p.lo.y; y < p.hi.y; y += cell)
       for (double x = p.lo.x; x < p.hi.x; x += cell) {
         const clip::Path rect{clip::toInt({x, y}), clip::toInt({x + cell, y}), clip::toInt({x + cell, y + cell}),

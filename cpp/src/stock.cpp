@@ -142,9 +142,27 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
     const double rho = dist(grid.at(k), c) + h;
     return low + cutterProfile(cut, rho) <= grid.floorAt(k) + target + kBoundSlack;
   };
+  // Necessary for every plunge, whatever its tool and centre: the floor in the
+  // sample's neighbourhood rises at most `target` above the sample. (Over the
+  // neighbourhood, inside the disk, the tip stops no lower than the floor less
+  // the profile there, and `fixes` adds at least that profile back.) Checked on
+  // the neighbourhood's rim: a floor far too steep for the limit is given up
+  // sample by sample, without trying any plunge.
+  auto hopeless = [&](size_t k) {
+    const Vec2 p = grid.at(k);
+    for (int a = 0; a < 8; ++a) {
+      const double z = depths.floor().height(p + Vec2{std::cos(a * M_PI / 4), std::sin(a * M_PI / 4)} * h);
+      if (z + opt.floorAllowance > grid.floorAt(k) + target + kBoundSlack) return true;  // false for NaN
+    }
+    return false;
+  };
   for (size_t k : over) {
     opt.progress.tick();
     if (!isOver[k]) continue;
+    if (hopeless(k)) {
+      ++out.unreachable;
+      continue;
+    }
     const Vec2 p = grid.at(k);
     CutDisk best;
     int bestScore = 0;

@@ -35,6 +35,7 @@ class DepthSolver {
   // Throws plunge::Error when no floor is under the cutter.
   double stopHeight(Vec2 center, const Cutter& cutter) const;
   const std::vector<Vec3>& peaks() const { return peaks_; }
+  const FloorSurface& floor() const { return floor_; }
 
  private:
   const FloorSurface& floor_;
