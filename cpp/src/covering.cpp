@@ -387,7 +387,7 @@ class Coverer {
     clip::bounds(poly, lo, hi);
     const double cell = 4 * rMax_;
     if (vertices <= kSplitVertices || (hi.x - lo.x <= cell && hi.y - lo.y <= cell)) {
-      addPart(std::move(poly), pin);
+      addPart(std::move(poly), lo, hi, pin);
       return;
     }
     const clip::IntPoint a = clip::toInt(lo - Vec2{1, 1}), b = clip::toInt(hi + Vec2{1, 1}),
@@ -402,11 +402,12 @@ class Coverer {
         addSplit(std::move(part), pin);
   }
 
-  void addPart(clip::Paths poly, bool pin) {
+  void addPart(clip::Paths poly, Vec2 lo, Vec2 hi, bool pin) {
     Piece p;
     p.area = clip::area(poly);
     if (p.area <= 0.0) return;
-    clip::bounds(poly, p.lo, p.hi);
+    p.lo = lo;
+    p.hi = hi;
     p.pin = pin;
     p.alive = true;
     p.poly = std::move(poly);

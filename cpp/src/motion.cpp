@@ -92,12 +92,14 @@ class Touched {
   static bool coveredBy(Polygons rest, Vec2 from, std::vector<Circle> near) {
     std::stable_sort(near.begin(), near.end(),
                      [&](const Circle& x, const Circle& y) { return dist(x.c, from) < dist(y.c, from); });
+    detail::Bounds b;
+    for (const Loop& l : rest) b.add(l);
     for (const Circle& d : near) {
       if (rest.empty()) break;
-      detail::Bounds b;
-      for (const Loop& l : rest) b.add(l);
       if (d.c.x + d.r < b.lo.x || d.c.x - d.r > b.hi.x || d.c.y + d.r < b.lo.y || d.c.y - d.r > b.hi.y) continue;
       rest = poly::subtract(rest, {poly::disk(d)});
+      b = {};
+      for (const Loop& l : rest) b.add(l);
     }
     return poly::area(rest) <= 1e-4;
   }

@@ -38,14 +38,10 @@ class Tsp {
     m_ = open ? n_ + 1 : n_;
     dummy_ = open ? n_ : -1;
     start_ = startNode;
-    if (open && startNode >= 0) {
-      Bounds b;
-      b.add(pts);
-      big_ = (norm(b.hi - b.lo) + 1.0) * (n_ + 1);
-    }
-    Bounds all;
-    all.add(pts);
-    eps_ = 1e-10 + kRelEps * (std::max(big_, norm(all.hi - all.lo)) + norm(all.hi) + norm(all.lo));
+    Bounds b;
+    b.add(pts);
+    if (open && startNode >= 0) big_ = (norm(b.hi - b.lo) + 1.0) * (n_ + 1);
+    eps_ = 1e-10 + kRelEps * (std::max(big_, norm(b.hi - b.lo)) + norm(b.hi) + norm(b.lo));
     buildNeighbours();
   }
 

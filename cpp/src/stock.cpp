@@ -1,6 +1,7 @@
 #include "plunge/stock.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "detail.hpp"
@@ -129,11 +130,13 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
   // (its centre, 8 points at 0.9 r) bound its stop height from below. Over a
   // floor too steep for the limit (no plunger can meet it) this skips nearly
   // every stop height.
+  std::array<Vec2, 8> compass;  // unit vectors every 45 degrees, for both tests below
+  for (int a = 0; a < 8; ++a) compass[a] = {std::cos(a * M_PI / 4), std::sin(a * M_PI / 4)};
   auto mayFix = [&](Vec2 c, size_t t, size_t k) {
     const Cutter& cut = cutters[t];
     double low = -std::numeric_limits<double>::infinity();
     for (int a = -1; a < 8; ++a) {
-      const Vec2 x = a < 0 ? c : c + Vec2{std::cos(a * M_PI / 4), std::sin(a * M_PI / 4)} * (0.9 * cut.radius);
+      const Vec2 x = a < 0 ? c : c + compass[a] * (0.9 * cut.radius);
       size_t q;
       if (!grid.nearest(x, q) || !grid.valid(q)) continue;
       const double rho = dist(grid.at(q), c);
@@ -151,7 +154,7 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
   auto hopeless = [&](size_t k) {
     const Vec2 p = grid.at(k);
     for (int a = 0; a < 8; ++a) {
-      const double z = depths.floor().height(p + Vec2{std::cos(a * M_PI / 4), std::sin(a * M_PI / 4)} * h);
+      const double z = depths.floor().height(p + compass[a] * h);
       if (z + opt.floorAllowance > grid.floorAt(k) + target + kBoundSlack) return true;  // false for NaN
     }
     return false;
