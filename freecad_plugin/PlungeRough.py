@@ -15,6 +15,7 @@ import os
 import tempfile
 
 import FreeCAD
+import Part
 from PySide.QtCore import QT_TRANSLATE_NOOP
 
 from freecad_plugin import generator, geometry
@@ -26,7 +27,7 @@ __doc__ = "Plunge roughing of pockets: circle packing, gap covering, sequencing,
 translate = FreeCAD.Qt.translate
 
 # Properties the job's setup sheet can carry defaults for.
-SETUP_PROPERTIES = ["RadialAllowance", "FloorAllowance", "ChordTolerance", "UseCannedCycle", "PeckDepth",
+SETUP_PROPERTIES = ["IncludeFillets", "RadialAllowance", "FloorAllowance", "ChordTolerance", "UseCannedCycle", "PeckDepth",
                     "MinCoverage", "AutoSelectTools", "Strategy", "MaxWallStock", "MaxFloorStock", "LeadOut",
                     "StockAwareHeights", "MaxEngagement", "MinEngagement"]
 
@@ -43,9 +44,14 @@ def SetupProperties():
 
 
 def _report(obj, message):
-    """A problem the user must see: the report view, the op's summary, an empty path."""
+    """A problem the user must see: the report view, the op's summary, an empty
+    path, and companions that stay out of the program (no tool change without
+    plunges after it) until the operation plans again."""
     FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, message))
     obj.Summary = message
+    for comp in companions(obj):
+        if comp.Active:
+            comp.Active = False
 
 
 PLUNGER_SHAPES = ("endmill", "ballend", "bullnose")
@@ -121,6 +127,9 @@ class ObjectPlungeRough(PathOp.ObjectOp):
     def _addProperties(self, obj):
         _add(obj, "App::PropertyLinkList", "ToolControllers",
              "All plunger tool controllers to use; the largest one is this operation's own")
+        _add(obj, "App::PropertyBool", "IncludeFillets",
+             "The fillets between the selected floor and its walls belong to the floor: roughed as floor, up to "
+             "the walls above them", True)
         _add(obj, "App::PropertyDistance", "RadialAllowance", "Material left on the walls and islands", 0.0)
         _add(obj, "App::PropertyDistance", "FloorAllowance", "Material left above the floor", 0.0)
         _add(obj, "App::PropertyLength", "ChordTolerance",
@@ -181,6 +190,15 @@ class ObjectPlungeRough(PathOp.ObjectOp):
             obj.ToolControllers = [obj.ToolController]
         syncCompanions(obj)  # the proxy is not attached yet: opOnChanged does not run
 
+    def opUpdateDepths(self, obj):
+        # FreeCAD takes the highest of the selected faces' bottoms; a pocket with
+        # several levels is roughed down to its lowest point.
+        faces = [base.Shape.getElement(sub) for base, subs in obj.Base for sub in subs if sub.startswith("Face")]
+        if faces:
+            lowest = min(f.BoundBox.ZMin for f in faces)
+            if abs(obj.OpFinalDepth.Value - lowest) > 1e-9:
+                obj.OpFinalDepth = lowest
+
     def opOnChanged(self, obj, prop):
         # Not while a file loads or an undo/redo replays the document: those
         # restore the companions themselves.
@@ -213,8 +231,9 @@ class ObjectPlungeRough(PathOp.ObjectOp):
             obj.Summary = translate("PlungeRough", "select the pocket's floor face")
             return
         workdir = plan_folder(obj)
+        notes = []
         try:
-            data = build_input(obj, tcs, faces, workdir)
+            data = build_input(obj, tcs, faces, workdir, notes)
             progress = PlanProgress(obj.Label)
             try:
                 plan = planner().plan(data, svg=True, progress=progress)
@@ -229,7 +248,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         with open(os.path.join(workdir, "plan.svg"), "w") as f:
             f.write(plan.pop("svg"))
         obj.PlanData = json.dumps({"input": data, "plan": plan})
-        report_plan(obj, plan)
+        report_plan(obj, plan, notes)
         own_tc = activate_companions(obj, plan, tcs)
         if own_tc is None:
             obj.PlanData = ""
@@ -283,23 +302,37 @@ def check_settings(obj, tcs):
         raise ValueError("the start depth must be above the final depth")
 
 
-def build_input(obj, tcs, faces, workdir):
+def model_of(obj):
+    """The part the selected faces belong to (walls, fillets and open sides are
+    found on it)."""
+    shapes = [base.Shape for base, subs in obj.Base if subs]
+    return shapes[0] if len(shapes) == 1 else Part.makeCompound(shapes)
+
+
+def build_input(obj, tcs, faces, workdir, notes=None):
     """The planner's input (docs/plan-format.md) for the operation's properties,
-    its plunger tool controllers (largest first) and its floor faces. Writes
-    nothing but a sculptured floor's BREP into workdir; ValueError names a bad
-    setting or face."""
-    boundary, islands, deviation = geometry.footprint(faces, obj.ChordTolerance.Value)
+    its plunger tool controllers (largest first) and its floor faces (with the
+    part's fillets and open sides, geometry.pocket). Writes nothing but a
+    sculptured floor's BREP into workdir; ValueError names a bad setting or face.
+    notes: a list that gets what the summary should say of the pocket."""
+    # Past an open side the plunges reach as far as the wall band guarantee
+    # needs to cut up to the edge, and a little more.
+    margin = obj.RadialAllowance.Value + obj.MaxWallStock.Value + 0.5
+    pocket = geometry.pocket(faces, obj.ChordTolerance.Value, obj.IncludeFillets, margin, model_of(obj))
+    if notes is not None:
+        notes.extend(pocket.notes())
+    deviation = pocket.deviation
     check_settings(obj, tcs)
     data = {
         "version": 1,
-        "boundary": boundary,
-        "islands": islands,
+        "boundary": pocket.boundary,
+        "islands": pocket.islands,
         "tools": [geometry.tool_spec(tc, obj.MaxEngagement, obj.MinEngagement) for tc in tcs],
         # Rapids and retracts at the first plunger's rapid rates, as the post runs them.
         "time_model": time_model(tcs[0]),
         "top_z": obj.StartDepth.Value,
         "safe_z": obj.SafeHeight.Value,
-        "floor": geometry.floor_spec(faces, obj.FinalDepth.Value, workdir),
+        "floor": geometry.floor_spec(pocket, obj.FinalDepth.Value, workdir),
         # FinalDepth is the deepest any plunge goes.
         "final_depth": obj.FinalDepth.Value,
         # The chords of a discretised free-form wall may lie off it by the
@@ -328,13 +361,16 @@ def plan_folder(obj, create=True):
     return workdir
 
 
-def report_plan(obj, plan):
-    """The plan's summary on the operation, its stock and warnings in the report view."""
+def report_plan(obj, plan, notes=()):
+    """The plan's summary on the operation (with what it says of the pocket:
+    fillets added, open sides), its stock and warnings in the report view."""
     warnings = list(plan.get("warnings", []))
     post_warning = canned_cycle_warning(obj)
     if post_warning:
         warnings.append(post_warning)
-    obj.Summary = summary(dict(plan, warnings=warnings))
+    obj.Summary = "; ".join([summary(dict(plan, warnings=warnings))] + list(notes))
+    for note in notes:
+        FreeCAD.Console.PrintMessage("%s: %s\n" % (obj.Label, note))
     FreeCAD.Console.PrintMessage("%s: %s\n" % (obj.Label, stock_report(plan["stats"])))
     for warning in warnings:
         FreeCAD.Console.PrintWarning("%s: %s\n" % (obj.Label, warning))

@@ -1,9 +1,17 @@
 """From the floor face(s) a user selected to the planner's pocket description.
 
-The outer wire of the floor is the pocket's wall, its inner wires are islands;
-free-form edges are discretised within the chord tolerance. A planar,
-horizontal floor is flat; any other floor goes to the planner as BREP faces so
-that every plunge gets its own depth.
+A pocket is what the selected faces bound together, with the part around them
+(`pocket()`):
+- the floor is every selected face plus, by default, the fillets that rise
+  from it tangentially into the walls;
+- its outline is the union of those faces in plan view, computed once on the
+  exact curves (shared edges project onto the same curve, so faces that meet
+  give one region without slivers), then discretised within the chord tolerance;
+- each edge of the outline is a wall where the part rises next to it, or open
+  where the part ends or steps down: an open hole is roughed to the floor's
+  height, and past an open side the plunges may leave the pocket.
+A planar, horizontal floor at one height is flat; any other floor goes to the
+planner as BREP faces so that every plunge gets its own depth.
 """
 import math
 import os
@@ -45,90 +53,377 @@ def _polyline(wire, tolerance):
     return _xy(points), deviation
 
 
+V = FreeCAD.Vector
+# Fillets: the floor's and the fillet's normals agree within this along their edge.
+TANGENT_COS = math.cos(math.radians(1.0))
+
+
 def _is_horizontal_plane(face):
     surface = face.Surface
     if not isinstance(surface, Part.Plane):
         return False
-    n = surface.Axis
-    return abs(abs(n.z) - 1.0) < 1e-9
+    return abs(abs(surface.Axis.z) - 1.0) < 1e-9
+
+
+def _mesh(face):
+    return face.tessellate(max(1e-3, 0.01 * face.BoundBox.DiagonalLength))
+
+
+def _shadow_area(face):
+    """Area of the face's shadow on the XY plane, from a tessellation: 0 for a wall."""
+    points, triangles = _mesh(face)
+    area = 0.0
+    for a, b, c in triangles:
+        p, q, r = points[a], points[b], points[c]
+        area += abs((q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x)) / 2
+    return area
+
+
+def _normal(face, point):
+    u, v = face.Surface.parameter(point)
+    return face.normalAt(u, v)
 
 
 def _check_face(name, face):
     if face.Area <= 1e-9:
-        raise GeometryError("%s has no area" % name)
-    # The face's shadow on the XY plane: a vertical face has none.
-    box = face.BoundBox
-    if box.XLength < 1e-6 or box.YLength < 1e-6:
-        raise GeometryError("%s is vertical: select the pocket's floor, not a wall" % name)
-    if isinstance(face.Surface, Part.Plane) and abs(face.Surface.Axis.z) < 1e-6:
-        raise GeometryError("%s is vertical: select the pocket's floor, not a wall" % name)
+        raise GeometryError("%s has no area: select the pocket's floor" % name)
+    if _shadow_area(face) <= 1e-6 * max(face.Area, 1.0):
+        raise GeometryError("%s is a wall (it stands vertical): select the pocket's floor instead, the face "
+                            "the tool plunges onto" % name)
 
 
-def footprint(faces, tolerance):
-    """The XY outline of the floor faces: (boundary, islands, deviation), the
-    deviation being how far the polylines may stray from the true walls.
+def _rises_from(floor, other, edge):
+    """`other` is a fillet of `floor` along `edge`: curved, tangent to the floor
+    there, rising from the edge and facing up everywhere (into a wall above)."""
+    if isinstance(other.Surface, Part.Plane) or other.BoundBox.ZMax <= edge.BoundBox.ZMax + 1e-6:
+        return False
+    mid = edge.valueAt(0.5 * (edge.FirstParameter + edge.LastParameter))
+    try:
+        if _normal(floor, mid).dot(_normal(other, mid)) < TANGENT_COS:
+            return False
+        points = _mesh(other)[0]
+        if any(_normal(other, p).z < -1e-6 for p in points[::max(1, len(points) // 64)]):
+            return False
+    except (Part.OCCError, ValueError):
+        return False
+    return _shadow_area(other) > 1e-6 * max(other.Area, 1.0)
 
-    faces: [(name, Part.Face)]. Several faces must form one connected floor.
-    """
-    if not faces:
+
+def _face_name(model, face):
+    for i, f in enumerate(model.Faces):
+        if f.isSame(face):
+            return "Face%d" % (i + 1)
+    return "a face"
+
+
+def _fillets(model, faces):
+    """The faces of the model that rise from the floor faces as fillets (and from
+    those, as the corner patches between two fillets do)."""
+    floor = list(faces)
+    added = []
+    queue = list(faces)
+    while queue:
+        face = queue.pop(0)
+        for edge in face.Edges:
+            for other in model.ancestorsOfType(edge, Part.Face):
+                if any(other.isSame(f) for f in floor):
+                    continue
+                if _rises_from(face, other, edge):
+                    floor.append(other)
+                    added.append(other)
+                    queue.append(other)
+    return added
+
+
+class _Shadows:
+    """Edges and faces projected onto z = 0, each edge once: an edge two faces
+    share casts one shadow, so their shadows meet exactly."""
+
+    def __init__(self, tolerance):
+        self.tolerance = tolerance
+        self.edges = {}
+
+    def edge(self, e):
+        for original, shadow in self.edges.get(e.hashCode(), []):
+            if original.isSame(e):
+                return shadow
+        shadow = self._project(e)
+        self.edges.setdefault(e.hashCode(), []).append((e, shadow))
+        return shadow
+
+    def _project(self, e):
+        box = e.BoundBox
+        if box.XLength < 1e-7 and box.YLength < 1e-7:
+            return None  # vertical: no shadow
+        ends = [V(v.Point.x, v.Point.y, 0) for v in e.Vertexes]
+        if all(abs(v.Point.z - e.Vertexes[0].Point.z) < 1e-12 for v in e.Vertexes) and box.ZLength < 1e-7:
+            shadow = e.copy()  # horizontal: the same curve, lowered (exact)
+            shadow.translate(V(0, 0, -e.Vertexes[0].Point.z))
+            return shadow
+        if isinstance(e.Curve, Part.Line):
+            return Part.makeLine(ends[0], ends[-1])
+        points = [V(p.x, p.y, 0) for p in e.discretize(Deflection=self.tolerance / 4)]
+        points[0], points[-1] = ends[0], ends[-1] if len(ends) > 1 else ends[0]
+        chord = ends[-1] - ends[0]
+        if chord.Length > 1e-9 and all(abs(chord.cross(p - ends[0]).z) / chord.Length < 1e-7 for p in points):
+            return Part.makeLine(ends[0], ends[-1])  # a curve in a vertical plane
+        curve = Part.BSplineCurve()
+        curve.interpolate(points)
+        return curve.toShape()
+
+    def face(self, face):
+        """The face's shadow: a planar face at z = 0 (seams and vertical edges drop out)."""
+        edges = []
+        for e in face.Edges:
+            if e.isSeam(face):
+                continue
+            s = self.edge(e)
+            if s is not None:
+                edges.append(s)
+        faces = []
+        for group in Part.sortEdges(edges):
+            wire = Part.Wire(group)
+            if wire.isClosed():
+                faces.append(_upward(Part.Face(wire)))
+        faces = sorted((f for f in faces if f.Area > 1e-12), key=lambda f: -f.Area)
+        if not faces:
+            return None
+        return _upward(faces[0].cut(faces[1:]).Faces[0]) if len(faces) > 1 else faces[0]
+
+
+class Pocket:
+    """A pocket as the planner gets it: boundary and islands (XY polylines), the
+    floor faces (selected and added fillets), flat caps over open holes and past
+    open sides, and what the user should be told."""
+
+    def __init__(self):
+        self.boundary = []
+        self.islands = []
+        self.deviation = 0.0
+        self.faces = []       # (name, face): the floor
+        self.added = []       # names of the fillets added to the floor
+        self.caps = []        # flat faces: open holes and the margin past open sides
+        self.open_sides = 0   # runs of open edges on the outline
+        self.holes = 0        # open holes roughed to the floor's height
+        self.kept_walls = 0   # open sides kept as walls: part material within reach past them
+        self.lowest = 0.0     # lowest point of the floor
+
+    def notes(self):
+        """What the summary says of the pocket beyond the selection."""
+        out = []
+        if self.added:
+            out.append("fillets added to the floor: %s" % ", ".join(self.added))
+        if self.open_sides:
+            out.append("%d open side%s: plunges reach past %s" % (self.open_sides, "s" if self.open_sides > 1 else "",
+                                                                  "them" if self.open_sides > 1 else "it"))
+        if self.holes:
+            out.append("%d hole%s where the part goes deeper roughed at the floor's height"
+                       % (self.holes, "s" if self.holes > 1 else ""))
+        if self.kept_walls:
+            out.append("%d open side%s kept as walls (the part is within reach past them)"
+                       % (self.kept_walls, "s" if self.kept_walls > 1 else ""))
+        return out
+
+
+def _rises_next_to(face, edge, step=0.05):
+    """The face goes up from the edge, right next to it (a wall, a draft, a
+    fillet), rather than down or level (the part ends or steps down there)."""
+    for f in (0.25, 0.5, 0.75):
+        t = edge.FirstParameter + f * (edge.LastParameter - edge.FirstParameter)
+        m = edge.valueAt(t)
+        try:
+            away = _normal(face, m).cross(edge.tangentAt(t))
+        except (Part.OCCError, ValueError):
+            return face.BoundBox.ZMax > edge.BoundBox.ZMax + 1e-6
+        if away.Length < 1e-12:
+            continue
+        away.normalize()
+        for sign in (1, -1):
+            u, v = face.Surface.parameter(m + away * (sign * step))
+            if face.isPartOfDomain(u, v) and face.Surface.value(u, v).z - m.z > 1e-3 * step:
+                return True
+    return False
+
+
+def _classify_edges(model, floor, shadows):
+    """Shadows of the floor's edges on its outline: (walls, open). An edge is a
+    wall where a face of the part next to it rises above it, open where the part
+    ends or steps down."""
+    walls, opened = [], []
+    for face in floor:
+        for e in face.Edges:
+            others = [g for g in model.ancestorsOfType(e, Part.Face) if not any(g.isSame(f) for f in floor)]
+            if not others and len(model.ancestorsOfType(e, Part.Face)) > 1:
+                continue  # between two floor faces
+            shadow = shadows.edge(e)
+            if shadow is None:
+                continue
+            rises = any(_rises_next_to(g, e) for g in others)
+            (walls if rises else opened).append((e, shadow))
+    return walls, opened
+
+
+def _segment_open(loop, walls, opened, tolerance):
+    """For each segment of a polyline loop, whether it lies on an open edge."""
+    if not opened:
+        return [False] * len(loop)
+    open_shadow = Part.makeCompound([s for _, s in opened])
+    wall_shadow = Part.makeCompound([s for _, s in walls]) if walls else None
+    out = []
+    for i, a in enumerate(loop):
+        b = loop[(i + 1) % len(loop)]
+        m = Part.Vertex(V((a[0] + b[0]) / 2, (a[1] + b[1]) / 2, 0))
+        d_open = open_shadow.distToShape(m)[0]
+        d_wall = wall_shadow.distToShape(m)[0] if wall_shadow else math.inf
+        out.append(d_open < d_wall and d_open <= tolerance + 1e-5)
+    return out
+
+
+def _upward(face):
+    """The face with its normal up: faces of one plane merge only when alike."""
+    if face.normalAt(0, 0).z < 0:
+        face.reverse()
+    return face
+
+
+def _polygon_face(loop):
+    return _upward(Part.Face(Part.makePolygon([V(x, y, 0) for x, y in loop + [loop[0]]])))
+
+
+def _air_above(model, face, z, top):
+    """No part material over the flat face from z up to top."""
+    if top <= z:
+        return True
+    prism = face.copy()
+    prism.translate(V(0, 0, z))
+    prism = prism.extrude(V(0, 0, top - z))
+    return model.common(prism).Volume < 1e-6
+
+
+def _signed_area(loop):
+    return 0.5 * sum(a[0] * b[1] - b[0] * a[1] for a, b in zip(loop, loop[1:] + loop[:1]))
+
+
+def _margin(loop, is_open, width):
+    """The band past the open segments of a counter-clockwise loop: a rectangle
+    past each, a disk at the vertices between two of them."""
+    pieces = []
+    n = len(loop)
+    for i in range(n):
+        if not is_open[i]:
+            continue
+        a, b = loop[i], loop[(i + 1) % n]
+        dx, dy = b[0] - a[0], b[1] - a[1]
+        length = math.hypot(dx, dy)
+        if length < 1e-12:
+            continue
+        nx, ny = dy / length * width, -dx / length * width
+        pieces.append(_polygon_face([a, b, [b[0] + nx, b[1] + ny], [a[0] + nx, a[1] + ny]]))
+        if is_open[(i + 1) % n]:
+            pieces.append(_upward(Part.Face(Part.Wire(Part.makeCircle(width, V(b[0], b[1], 0))))))
+    return pieces
+
+
+def pocket(selection, tolerance, include_fillets=True, margin=1.5, model=None):
+    """The pocket the selected faces bound, with the part around them.
+
+    selection: [(name, Part.Face)], model: the part's shape (walls, fillets and
+    open edges are found on it; None: every edge is a wall), margin: how far
+    plunges may reach past an open side, mm. GeometryError names a selection
+    that is not one pocket's floor."""
+    if not selection:
         raise GeometryError("select the pocket's floor face(s)")
     if tolerance <= 0:
         raise GeometryError("the chord tolerance must be greater than zero")
-    flat = []
-    worst = 0.0
-    for name, face in faces:
+    for name, face in selection:
         _check_face(name, face)
-        # Project onto z = 0: outer wire as a face with its holes.
-        outer, deviation = _polyline(face.OuterWire, tolerance)
-        worst = max(worst, deviation)
-        if len(outer) < 3:
-            raise GeometryError("%s has no area under it" % name)
-        wires = [Part.makePolygon([FreeCAD.Vector(x, y, 0) for x, y in outer + [outer[0]]])]
-        for w in face.Wires:
-            if w.isSame(face.OuterWire):
-                continue
-            pts, deviation = _polyline(w, tolerance)
-            worst = max(worst, deviation)
-            if len(pts) >= 3:
-                wires.append(Part.makePolygon([FreeCAD.Vector(x, y, 0) for x, y in pts + [pts[0]]]))
-        try:
-            flat.append(Part.Face(wires))
-        except Part.OCCError:
-            raise GeometryError("%s has no area under it" % name)
-    shadow = flat[0]
-    for f in flat[1:]:
-        shadow = shadow.fuse(f)
-    shadow = shadow.removeSplitter()
-    if len(shadow.Faces) != 1:
-        raise GeometryError("the selected faces do not form one connected floor; make one operation per pocket")
-    floor = shadow.Faces[0]
-    boundary = _xy(p for p in _vertices(floor.OuterWire))
-    islands = []
-    for w in floor.Wires:
-        if not w.isSame(floor.OuterWire):
-            islands.append(_xy(_vertices(w)))
-    return boundary, islands, worst
+    result = Pocket()
+    result.faces = list(selection)
+    floor = [f for _, f in selection]
+    if model is not None and include_fillets:
+        for f in _fillets(model, floor):
+            prefix = selection[0][0].rsplit(".", 1)[0]
+            result.added.append("%s.%s" % (prefix, _face_name(model, f)))
+            result.faces.append((result.added[-1], f))
+            floor.append(f)
+    shadows = _Shadows(tolerance)
+    flats = [s for s in (shadows.face(f) for f in floor) if s is not None]
+    if not flats:
+        raise GeometryError("%s has no area under it: select the pocket's floor" % selection[0][0])
+    union = flats[0].multiFuse(flats[1:]) if len(flats) > 1 else flats[0]
+    union = union.removeSplitter()
+    if len(union.Faces) != 1:
+        raise GeometryError("the selected faces (%s) make %d separate floors, not one pocket: select the floor "
+                            "faces of one pocket (one operation per pocket)"
+                            % (", ".join(n for n, _ in selection), len(union.Faces)))
+    shadow = union.Faces[0]
+    walls, opened = _classify_edges(model, floor, shadows) if model is not None else ([], [])
+    boundary, result.deviation = _polyline(shadow.OuterWire, tolerance)
+    if len(boundary) < 3 or abs(_signed_area(boundary)) < 1e-9:
+        raise GeometryError("%s has no area under it: select the pocket's floor" % selection[0][0])
+    if _signed_area(boundary) < 0:
+        boundary.reverse()
+    top = model.BoundBox.ZMax if model is not None else 0.0
+    result.lowest = min(f.BoundBox.ZMin for f in floor)
+    open_z = min([e.BoundBox.ZMin for e, _ in opened], default=result.lowest)
+    for w in shadow.Wires:
+        if w.isSame(shadow.OuterWire):
+            continue
+        loop, deviation = _polyline(w, tolerance)
+        result.deviation = max(result.deviation, deviation)
+        if len(loop) < 3:
+            continue
+        hole = _polygon_face(loop)
+        if all(_segment_open(loop, walls, opened, tolerance)) and _air_above(model, hole, open_z + 0.01, top):
+            result.holes += 1  # the part goes deeper: roughed at the floor's height
+            hole.translate(V(0, 0, open_z))
+            result.caps.append(hole)
+        else:
+            result.islands.append(loop)
+    is_open = _segment_open(boundary, walls, opened, tolerance)
+    if any(is_open):
+        boundary = _open_sides(result, model, boundary, is_open, margin, open_z, top)
+    result.boundary = boundary
+    return result
 
 
-def _vertices(wire):
-    """The vertices of a polygonal wire in order."""
-    return [v.Point for v in Part.Wire(Part.__sortEdges__(wire.Edges)).OrderedVertexes]
+def _open_sides(result, model, boundary, is_open, margin, z, top):
+    """The boundary grown by `margin` past its open segments, where the part
+    leaves room (halved twice, then kept as a wall); the margin becomes a cap."""
+    n = len(boundary)
+    result.open_sides = sum(1 for i in range(n) if is_open[i] and not is_open[i - 1]) or 1
+    region = _polygon_face(boundary)
+    for width in (margin, margin / 2, margin / 4):
+        grown = region.multiFuse(_margin(boundary, is_open, width)).removeSplitter()
+        if len(grown.Faces) != 1:
+            continue
+        extra = grown.cut(region)
+        if _air_above(model, extra, z + 0.01, top):
+            loop, _ = _polyline(grown.Faces[0].OuterWire, result.deviation or 0.01)
+            if _signed_area(loop) < 0:
+                loop.reverse()
+            for f in extra.Faces:
+                f.translate(V(0, 0, z))
+                result.caps.append(f)
+            return loop
+    result.kept_walls, result.open_sides = result.open_sides, 0
+    return boundary
 
 
-def floor_spec(faces, final_depth, workdir=None):
-    """The planner's "floor": flat at final_depth for one horizontal plane,
-    else the faces as a BREP file (written to workdir)."""
-    if all(_is_horizontal_plane(f) for _, f in faces):
-        heights = {round(f.BoundBox.ZMin, 6) for _, f in faces}
+def floor_spec(pocket, final_depth, workdir=None):
+    """The planner's "floor": flat at final_depth when every floor face (and cap)
+    is one horizontal plane, else the faces as a BREP file (written to workdir)."""
+    faces = [f for _, f in pocket.faces]
+    if all(_is_horizontal_plane(f) for f in faces):
+        heights = {round(f.BoundBox.ZMin, 6) for f in faces + pocket.caps}
         if len(heights) == 1:
             return {"z": final_depth}
-    compound = Part.makeCompound([f.copy() for _, f in faces])
+    compound = Part.makeCompound([f.copy() for f in faces + pocket.caps])
     if workdir is None:
         workdir = tempfile.mkdtemp(prefix="plungerough-")
     path = os.path.join(workdir, "floor.brep")
     compound.exportBrep(path)
     return {"brep": path}
-
 
 def bit_length(bit, name):
     """A length property of a tool bit in mm (None when the bit has none)."""
