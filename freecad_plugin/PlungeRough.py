@@ -192,10 +192,11 @@ class ObjectPlungeRough(PathOp.ObjectOp):
 
     def opUpdateDepths(self, obj):
         # FreeCAD takes the highest of the selected faces' bottoms; a pocket with
-        # several levels is roughed down to its lowest point.
+        # several levels is roughed down to its lowest point (a plane's own
+        # height: a curved face's box depends on whether it was drawn yet).
         faces = [base.Shape.getElement(sub) for base, subs in obj.Base for sub in subs if sub.startswith("Face")]
-        if faces:
-            lowest = min(f.BoundBox.ZMin for f in faces)
+        if len(faces) > 1:
+            lowest = min(f.Surface.Position.z if geometry.is_horizontal_plane(f) else f.BoundBox.ZMin for f in faces)
             if abs(obj.OpFinalDepth.Value - lowest) > 1e-9:
                 obj.OpFinalDepth = lowest
 

@@ -58,7 +58,7 @@ V = FreeCAD.Vector
 TANGENT_COS = math.cos(math.radians(1.0))
 
 
-def _is_horizontal_plane(face):
+def is_horizontal_plane(face):
     surface = face.Surface
     if not isinstance(surface, Part.Plane):
         return False
@@ -207,6 +207,7 @@ class Pocket:
         self.holes = 0        # open holes roughed to the floor's height
         self.kept_walls = 0   # open sides kept as walls: part material within reach past them
         self.lowest = 0.0     # lowest point of the floor
+        self.tolerance = 0.01  # chord tolerance
 
     def notes(self):
         """What the summary says of the pocket beyond the selection."""
@@ -338,6 +339,7 @@ def pocket(selection, tolerance, include_fillets=True, margin=1.5, model=None):
     for name, face in selection:
         _check_face(name, face)
     result = Pocket()
+    result.tolerance = tolerance
     result.faces = list(selection)
     floor = [f for _, f in selection]
     if model is not None and include_fillets:
@@ -399,7 +401,7 @@ def _open_sides(result, model, boundary, is_open, margin, z, top):
             continue
         extra = grown.cut(region)
         if _air_above(model, extra, z + 0.01, top):
-            loop, _ = _polyline(grown.Faces[0].OuterWire, result.deviation or 0.01)
+            loop, _ = _polyline(grown.Faces[0].OuterWire, result.tolerance)
             if _signed_area(loop) < 0:
                 loop.reverse()
             for f in extra.Faces:
@@ -414,7 +416,7 @@ def floor_spec(pocket, final_depth, workdir=None):
     """The planner's "floor": flat at final_depth when every floor face (and cap)
     is one horizontal plane, else the faces as a BREP file (written to workdir)."""
     faces = [f for _, f in pocket.faces]
-    if all(_is_horizontal_plane(f) for f in faces):
+    if all(is_horizontal_plane(f) for f in faces):
         heights = {round(f.BoundBox.ZMin, 6) for f in faces + pocket.caps}
         if len(heights) == 1:
             return {"z": final_depth}

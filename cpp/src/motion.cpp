@@ -211,7 +211,7 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
       const Vec2 q = c + (end - c) * (static_cast<double>(s) / samples);
       // Walls and islands, and the floor under the moving tool.
       if (!region.diskFits(q, cutter.radius + in.radialAllowance) ||
-          depths.stopHeight(q, cutter) + in.floorAllowance > p.z + 1e-6)
+          depths.plungeHeight(q, cutter, in.floorAllowance, in.radialAllowance) > p.z + 1e-6)
         return false;
     }
     return true;

@@ -268,7 +268,7 @@ std::vector<CutDisk> depthsOf(const PlanInput& in, const CoverResult& cover, con
   std::vector<CutDisk> out;
   for (const CoverDisk& d : cover.disks) {
     progress.tick(0.75 + 0.1 * static_cast<double>(out.size()) / cover.disks.size());
-    const double z = depths.stopHeight(d.center, cutterOf(in.tools[d.tool])) + in.floorAllowance;
+    const double z = depths.plungeHeight(d.center, cutterOf(in.tools[d.tool]), in.floorAllowance, in.radialAllowance);
     if (z >= in.topZ)
       throw Error("the floor rises to top_z or above under the plunge at " + detail::formatPoint(d.center));
     out.push_back({d.center, d.tool, z});
@@ -304,13 +304,22 @@ void sequence(const PlanInput& in, const std::vector<CutDisk>& disks, Plan& out)
 
 // The rest step in Z: plunges added where a sculptured floor keeps more stock
 // than asked for (stock.hpp).
+// The stock samples of the pocket, with the wall band along steps in the floor
+// (a rise of the limit and two sample steps between neighbours: no floor slope).
+StockGrid stockGrid(const PlanInput& in, const Region& region, const FloorSurface& floor, const Plan& out,
+                    double smallestRadius, const Progress& progress) {
+  const double spacing = stockSpacing(out.stats.regionArea, smallestRadius);
+  StockGrid grid(region, floor, in.radialAllowance, in.floorAllowance, in.maxWallStock, spacing, progress);
+  grid.bandFloorSteps(std::max(in.maxFloorStock, 0.0) + 2.0 * spacing, in.radialAllowance + in.maxWallStock);
+  return grid;
+}
+
 void restStep(const PlanInput& in, const Region& region, const FloorSurface& floor, const DepthSolver& depths,
               std::vector<CutDisk>& disks, Plan& out, const Progress& progress) {
   std::vector<Cutter> cutters;
   for (const Tool& t : in.tools) cutters.push_back(cutterOf(t));
   if (!isSculptured(in, floor) || in.maxFloorStock <= 0.0) return;
-  StockGrid grid(region, floor, in.radialAllowance, in.floorAllowance, in.maxWallStock,
-                 stockSpacing(out.stats.regionArea, cutters.back().radius), progress);
+  StockGrid grid = stockGrid(in, region, floor, out, cutters.back().radius, progress);
   for (const CutDisk& d : disks) grid.cut(d, cutters[d.tool]);
   progress.stage(0.85, "rest machining in Z");
   RestOptions ro;
@@ -325,12 +334,12 @@ void restStep(const PlanInput& in, const Region& region, const FloorSurface& flo
 }
 
 // The stock the plan's plunges leave on the floor, and the volumes.
-void floorStock(const PlanInput& in, const Region& region, const FloorSurface& floor, Plan& out,
+// held: plunges the final depth stopped above the floor.
+void floorStock(const PlanInput& in, const Region& region, const FloorSurface& floor, Plan& out, bool held,
                 const Progress& progress) {
   std::vector<Cutter> cutters;
   for (const Tool& t : in.tools) cutters.push_back(cutterOf(t));
-  StockGrid grid(region, floor, in.radialAllowance, in.floorAllowance, in.maxWallStock,
-                 stockSpacing(out.stats.regionArea, cutters.back().radius), progress);
+  StockGrid grid = stockGrid(in, region, floor, out, cutters.back().radius, progress);
   for (const Plunge& p : out.plunges) grid.cut({{p.x, p.y}, toolIndex(in, p.toolId), p.z}, cutters[toolIndex(in, p.toolId)]);
   const bool sculptured = isSculptured(in, floor);
   const StockReport r = measureStock(grid, in.topZ);
@@ -341,9 +350,6 @@ void floorStock(const PlanInput& in, const Region& region, const FloorSurface& f
   if (sculptured && in.maxFloorStock > 0.0 && r.maxFloorStock > in.maxFloorStock + 1e-6) {
     std::ostringstream w;
     // Plunges held at the final depth leave that stock by request, not for want of a tool.
-    const bool held = in.finalDepth && std::any_of(out.plunges.begin(), out.plunges.end(), [&](const Plunge& p) {
-                        return p.z <= *in.finalDepth + in.floorAllowance;
-                      });
     w << std::fixed << std::setprecision(2) << "up to " << r.maxFloorStock
       << " mm of stock stay above the floor, more than the " << in.maxFloorStock << " mm asked for: "
       << (held ? "the final depth stops plunges above the floor"
@@ -480,9 +486,10 @@ Pocket pocketOf(PlanInput& in, Plan& out) {
 }
 
 // Plunge positions and their stop heights: packing and covering (or the grid),
-// the depth of each (4.4), the rest step in Z, then no plunge below final_depth.
+// the depth of each (4.4), the rest step in Z, then no plunge below final_depth
+// (held: whether that raised any plunge above the floor).
 std::vector<CutDisk> placeAndDepth(const PlanInput& in, const Pocket& pocket, const FloorSurface& floor,
-                                   const DepthSolver& depths, Plan& out, CoverResult& cover,
+                                   const DepthSolver& depths, Plan& out, CoverResult& cover, bool& held,
                                    const Progress& progress) {
   std::vector<double> radii;
   for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
@@ -492,8 +499,13 @@ std::vector<CutDisk> placeAndDepth(const PlanInput& in, const Pocket& pocket, co
   progress.stage(0.75, "plunge depths");
   std::vector<CutDisk> disks = depthsOf(in, cover, depths, progress);
   restStep(in, pocket.region, floor, depths, disks, out, progress);
+  held = false;
   if (in.finalDepth)
-    for (CutDisk& d : disks) d.z = std::max(d.z, *in.finalDepth + in.floorAllowance);
+    for (CutDisk& d : disks) {
+      const double lowest = *in.finalDepth + in.floorAllowance;
+      held = held || d.z < lowest - 1e-9;
+      d.z = std::max(d.z, lowest);
+    }
   return disks;
 }
 
@@ -535,7 +547,8 @@ Plan planWithTools(PlanInput in, const Progress& progress) {
   const DepthSolver depths(*floor, lo, hi,
                            std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)));
   CoverResult cover;
-  const std::vector<CutDisk> disks = placeAndDepth(in, pocket, *floor, depths, out, cover, progress);
+  bool held = false;
+  const std::vector<CutDisk> disks = placeAndDepth(in, pocket, *floor, depths, out, cover, held, progress);
 
   progress.stage(0.9, "ordering the plunges");
   sequence(in, disks, out);
@@ -551,7 +564,7 @@ Plan planWithTools(PlanInput in, const Progress& progress) {
   out.plunges = splitIntoLevels(in, out.plunges, out.stats);
   coverageStats(in, pocket.region, pocket.core, limited ? coverOf(in, out, pocket.core) : cover, out);
   planMotion(in, pocket.region, depths, out);
-  floorStock(in, pocket.region, *floor, out, progress);
+  floorStock(in, pocket.region, *floor, out, held, progress);
   countPlunges(in, out);
   out.stats.planningSeconds = secondsSince(t0);
   return out;

@@ -66,6 +66,29 @@ StockGrid::StockGrid(const Region& region, const FloorSurface& floor, double rad
   }
 }
 
+void StockGrid::bandFloorSteps(double rise, double reach) {
+  std::vector<size_t> feet;
+  for (size_t k = 0; k < size(); ++k) {
+    if (!valid(k)) continue;
+    const long i = static_cast<long>(k % nx_), j = static_cast<long>(k / nx_);
+    bool foot = false;
+    for (long dj = -1; dj <= 1 && !foot; ++dj)
+      for (long di = -1; di <= 1 && !foot; ++di) {
+        const long a = i + di, b = j + dj;
+        if (a < 0 || b < 0 || a >= static_cast<long>(nx_) || b >= static_cast<long>(ny_)) continue;
+        const size_t q = static_cast<size_t>(b) * nx_ + static_cast<size_t>(a);
+        foot = valid(q) && floor_[q] - floor_[k] > rise;
+      }
+    if (foot) feet.push_back(k);
+  }
+  for (size_t k : feet) {
+    const Vec2 p = at(k);
+    forEachIn(p - Vec2{reach, reach}, p + Vec2{reach, reach}, [&](size_t m) {
+      if (valid(m) && dist(at(m), p) <= reach && floor_[m] < floor_[k] + 0.5 * rise) core_[m] = 0;
+    });
+  }
+}
+
 void StockGrid::cut(const CutDisk& d, const Cutter& cutter) {
   const double r = cutter.radius, h = neighbourhood();
   forEachIn(d.center - Vec2{r, r}, d.center + Vec2{r, r}, [&](size_t k) {
@@ -167,8 +190,34 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
       continue;
     }
     const Vec2 p = grid.at(k);
-    CutDisk best;
-    int bestScore = 0;
+    // Candidates, each with a lower bound of its stop height (the floor at
+    // every sample under its disk less the cutter's profile there) and so an
+    // upper bound of its score; exact stop heights (a rim optimization each,
+    // milliseconds on BREP floors) only while a candidate may still beat or tie
+    // the best (branch and bound: the same choice as trying them all).
+    struct Candidate {
+      CutDisk disk;
+      int bound = 0;
+      size_t order = 0;
+    };
+    std::vector<Candidate> candidates;
+    auto score = [&](const CutDisk& d) {
+      const double r = cutters[d.tool].radius;
+      int s = 0;
+      grid.forEachIn(d.center - Vec2{r, r}, d.center + Vec2{r, r}, [&](size_t q) {
+        if (isOver[q] && fixes(d, q)) ++s;
+      });
+      return s;
+    };
+    auto lowestStop = [&](Vec2 c, size_t t) {
+      const Cutter& cut = cutters[t];
+      double low = -std::numeric_limits<double>::infinity();
+      grid.forEachIn(c - Vec2{cut.radius, cut.radius}, c + Vec2{cut.radius, cut.radius}, [&](size_t q) {
+        const double rho = dist(grid.at(q), c);
+        if (rho <= cut.radius && grid.valid(q)) low = std::max(low, grid.floorAt(q) - cutterProfile(cut, rho));
+      });
+      return low;
+    };
     for (size_t t = 0; t < cutters.size(); ++t) {
       const double r = cutters[t].radius, clearance = r + opt.radialAllowance;
       // Centres over the sample and around it (12 directions, 0.45 r and 0.9 r
@@ -184,22 +233,32 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
         // others are not worth a stop height.
         if (dist(c, p) + h > r || !region.diskFits(c, clearance)) continue;
         if (!mayFix(c, t, k)) continue;
-        CutDisk d{c, static_cast<int>(t), 0.0};
-        try {
-          d.z = depths.stopHeight(c, cutters[t]) + opt.floorAllowance;
-        } catch (const Error&) {
-          continue;  // no floor under part of the disk
-        }
-        if (d.z >= opt.topZ || !fixes(d, k)) continue;
-        int score = 0;
-        grid.forEachIn(c - Vec2{r, r}, c + Vec2{r, r}, [&](size_t q) {
-          if (isOver[q] && fixes(d, q)) ++score;
-        });
-        // Ties: the larger tool (it was listed first), then the first centre.
-        if (score > bestScore) {
-          bestScore = score;
-          best = d;
-        }
+        CutDisk low{c, static_cast<int>(t), lowestStop(c, t) - kBoundSlack};
+        if (low.z >= opt.topZ || !fixes(low, k)) continue;
+        candidates.push_back({low, score(low), candidates.size()});
+      }
+    }
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const Candidate& a, const Candidate& b) { return a.bound > b.bound; });
+    CutDisk best;
+    int bestScore = 0;
+    size_t bestOrder = 0;
+    for (const Candidate& cand : candidates) {
+      if (cand.bound < bestScore) break;
+      if (bestScore > 0 && cand.bound == bestScore && cand.order > bestOrder) continue;
+      CutDisk d = cand.disk;
+      try {
+        d.z = depths.plungeHeight(d.center, cutters[d.tool], opt.floorAllowance, opt.radialAllowance);
+      } catch (const Error&) {
+        continue;  // no floor under part of the disk
+      }
+      if (d.z >= opt.topZ || !fixes(d, k)) continue;
+      const int s = score(d);
+      // Ties: the larger tool (it was listed first), then the first centre.
+      if (s > bestScore || (s == bestScore && s > 0 && cand.order < bestOrder)) {
+        bestScore = s;
+        best = d;
+        bestOrder = cand.order;
       }
     }
     if (bestScore == 0) {

@@ -34,6 +34,13 @@ class DepthSolver {
   // Tip height at which the cutter at `center` first touches the floor (no allowance).
   // Throws plunge::Error when no floor is under the cutter.
   double stopHeight(Vec2 center, const Cutter& cutter) const;
+  // Where a plunge at `center` stops: `floorAllowance` above the floor under the
+  // cutter, and above any step of the floor within `radialAllowance` beyond its
+  // rim. A step (where selected faces at two levels meet: floor rising steeper
+  // than 80 degrees) is a wall of the lower level: the tool keeps the radial
+  // allowance from it as from the pocket's walls. Throws plunge::Error when no
+  // floor is under the cutter.
+  double plungeHeight(Vec2 center, const Cutter& cutter, double floorAllowance, double radialAllowance) const;
   const std::vector<Vec3>& peaks() const { return peaks_; }
   const FloorSurface& floor() const { return floor_; }
 

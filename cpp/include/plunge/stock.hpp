@@ -39,6 +39,11 @@ class StockGrid {
  public:
   StockGrid(const Region& region, const FloorSurface& floor, double radialAllowance, double floorAllowance,
             double wallBand, double spacing, const Progress& progress = Progress());
+  // Steps in the floor (where selected faces at two levels meet, 4.4) are walls
+  // of the lower level: its samples within `reach` (the radial allowance and
+  // the wall band) of a sample next to one higher by more than `rise` join the
+  // wall band, as along the pocket's walls.
+  void bandFloorSteps(double rise, double reach);
   bool inCore(size_t k) const { return core_[k] == 2; }
   bool restTarget(size_t k) const { return core_[k] != 0; }  // the core and one sample step around it
   // Lowers the cut height under a plunge's disk.
