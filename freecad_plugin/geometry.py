@@ -36,20 +36,27 @@ def _xy(points):
     return [list(q) for q in out]
 
 
-def _polyline(wire, tolerance):
-    """The wire as a closed XY polyline within `tolerance` of the curve, and the
-    largest deviation measured (OCCT's deflection is not a strict bound: chord
-    midpoints are checked and the polyline refined until they are within it)."""
+def _chords(shape, tolerance):
+    """Points along a wire or edge whose chords stay within `tolerance` of it,
+    and the largest deviation measured (OCCT's deflection is not a strict
+    bound: chord midpoints are checked and the points refined until within it)."""
     deflection = tolerance
     for _ in range(6):
-        points = wire.discretize(Deflection=deflection)
+        points = shape.discretize(Deflection=deflection)
         deviation = 0.0
         for a, b in zip(points, points[1:]):
             if (a - b).Length > 1e-9:
-                deviation = max(deviation, wire.distToShape(Part.Vertex((a + b) * 0.5))[0])
+                deviation = max(deviation, shape.distToShape(Part.Vertex((a + b) * 0.5))[0])
         if deviation <= tolerance:
             break
         deflection *= 0.5
+    return points, deviation
+
+
+def _polyline(wire, tolerance):
+    """The wire as a closed XY polyline within `tolerance` of the curve, and the
+    largest deviation measured."""
+    points, deviation = _chords(wire, tolerance)
     return _xy(points), deviation
 
 
@@ -142,6 +149,7 @@ class _Shadows:
     def __init__(self, tolerance):
         self.tolerance = tolerance
         self.edges = {}
+        self.deviation = 0.0  # largest distance of a chord from its curve
 
     def edge(self, e):
         for original, shadow in self.edges.get(e.hashCode(), []):
@@ -162,14 +170,18 @@ class _Shadows:
             return shadow
         if isinstance(e.Curve, Part.Line):
             return Part.makeLine(ends[0], ends[-1])
-        points = [V(p.x, p.y, 0) for p in e.discretize(Deflection=self.tolerance / 4)]
-        points[0], points[-1] = ends[0], ends[-1] if len(ends) > 1 else ends[0]
+        # Any other curve: chords within the tolerance (measured in space, where
+        # the curve is: its shadow is no farther). The chords are the shadow
+        # both faces of the edge get, so the faces still meet exactly.
+        spatial, deviation = _chords(e, self.tolerance)
+        self.deviation = max(self.deviation, deviation)
+        points = [V(p.x, p.y, 0) for p in spatial]
+        points[0], points[-1] = ends[0], (ends[-1] if len(ends) > 1 else ends[0])
         chord = ends[-1] - ends[0]
         if chord.Length > 1e-9 and all(abs(chord.cross(p - ends[0]).z) / chord.Length < 1e-7 for p in points):
             return Part.makeLine(ends[0], ends[-1])  # a curve in a vertical plane
-        curve = Part.BSplineCurve()
-        curve.interpolate(points)
-        return curve.toShape()
+        points = [p for i, p in enumerate(points) if i == 0 or (p - points[i - 1]).Length > 1e-9]
+        return Part.makePolygon(points)
 
     def face(self, face):
         """The face's shadow: a planar face at z = 0 (seams and vertical edges drop out)."""
@@ -179,7 +191,7 @@ class _Shadows:
                 continue
             s = self.edge(e)
             if s is not None:
-                edges.append(s)
+                edges.extend(s.Edges)
         faces = []
         for group in Part.sortEdges(edges):
             wire = Part.Wire(group)
@@ -365,6 +377,7 @@ def pocket(selection, tolerance, include_fillets=True, margin=1.5, model=None):
         raise GeometryError("%s has no area under it: select the pocket's floor" % selection[0][0])
     if _signed_area(boundary) < 0:
         boundary.reverse()
+    result.deviation = max(result.deviation, shadows.deviation)
     top = model.BoundBox.ZMax if model is not None else 0.0
     result.lowest = min(f.BoundBox.ZMin for f in floor)
     open_z = min([e.BoundBox.ZMin for e, _ in opened], default=result.lowest)
