@@ -22,7 +22,8 @@ Vec2 pushOffWalls(const Region& region, Vec2 x, double clearance) {
   for (int i = 0; i < 4; ++i) {
     Vec2 w;
     double d;
-    if (!region.nearestWallPoint(x, clearance, w, d) || d < 1e-9 || !region.contains(x)) break;
+    // nearestWallPoint may return a farther wall (a long slanted wall's box holds x): only nearer ones push.
+    if (!region.nearestWallPoint(x, clearance, w, d) || d < 1e-9 || d >= clearance || !region.contains(x)) break;
     x = w + (x - w) * ((clearance + 1e-6) / d);
   }
   return x;

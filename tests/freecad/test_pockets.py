@@ -150,7 +150,7 @@ def floor_z(obj, z):
 # Open (issue 22): along the walls a plunge stops on the fillet under its disk,
 # but the fillet keeps rising beyond its rim: the tool's bottom edge comes within
 # about 0.15 mm of it, less than either allowance. The allowance must hold in 3D
-# next to the disk too (and the rest step in Z on fillets must get fast).
+# next to the disk too.
 @pytest.mark.xfail(strict=True, reason="fillets: the allowance beside the disk (issue 22, open)")
 @pytest.mark.parametrize("with_fillets", [False, True])
 def test_filleted_pocket_roughed_to_the_walls(doc, with_fillets):
@@ -162,8 +162,7 @@ def test_filleted_pocket_roughed_to_the_walls(doc, with_fillets):
     if with_fillets:  # the user picks the fillets too: the same pocket
         faces += ["Face%d" % (i + 1) for i, f in enumerate(obj.Shape.Faces)
                   if not isinstance(f.Surface, Part.Plane) and f.BoundBox.ZMax <= z + 3 + 1e-6]
-    # Without the rest step in Z (MaxFloorStock 0): on fillets it takes minutes (an open problem).
-    job, op, tcs = job_with_op(doc, obj, faces, MaxFloorStock=0)
+    job, op, tcs = job_with_op(doc, obj, faces)
     plan, report = check_job(job, op, tcs, [z])
     assert_clean(report)
     assert "fillets added to the floor" in op.Summary or with_fillets
@@ -175,7 +174,7 @@ def test_filleted_pocket_roughed_to_the_walls(doc, with_fillets):
 def test_filleted_pocket_without_its_fillets_keeps_them(doc):
     obj = filleted_pocket(doc)
     z = floor_z(obj, 10)
-    job, op, tcs = job_with_op(doc, obj, faces_at(obj.Shape, z), IncludeFillets=False, MaxFloorStock=0)
+    job, op, tcs = job_with_op(doc, obj, faces_at(obj.Shape, z), IncludeFillets=False)
     plan, report = check_job(job, op, tcs, [z])
     assert not report["gouges"] and not report["rapids_through_stock"]
     assert "fillets added" not in op.Summary
@@ -183,11 +182,7 @@ def test_filleted_pocket_without_its_fillets_keeps_them(doc):
     assert report["uncut"] and min(w for *_, w in report["uncut"]) >= 2.5
 
 
-@pytest.mark.parametrize("selection", [
-    "shallow",
-    # Open (issue 22): the deeper level's rest step leaves its corners at the upper level's height.
-    pytest.param("both", marks=pytest.mark.xfail(strict=True, reason="levels: corners of the deeper level (issue 22, open)")),
-])
+@pytest.mark.parametrize("selection", ["shallow", "both"])
 def test_pocket_in_a_pocket(doc, selection):
     obj = pocket_in_pocket(doc)
     shallow, deep = floor_z(obj, 30), floor_z(obj, 15)

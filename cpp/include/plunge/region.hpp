@@ -45,7 +45,8 @@ class Region {
   // Distance from p to the nearest wall; exact when it is at most `within`,
   // otherwise some value above `within`.
   double wallDistance(Vec2 p, double within) const;
-  // Nearest wall point to p among walls within `within` (returns false if none).
+  // Nearest wall point to p among the walls whose bounding box comes within
+  // `within` of p (returns false if none): it may lie farther than `within`.
   bool nearestWallPoint(Vec2 p, double within, Vec2& point, double& distance, int* wall = nullptr) const;
   // A disk of radius `clearance` at c lies inside the region (walls at least
   // clearance - tol away, centre inside).
