@@ -76,9 +76,10 @@ def _mesh(face):
     return face.tessellate(max(1e-3, 0.01 * face.BoundBox.DiagonalLength))
 
 
-def _shadow_area(face):
-    """Area of the face's shadow on the XY plane, from a tessellation: 0 for a wall."""
-    points, triangles = _mesh(face)
+def _shadow_area(face, mesh=None):
+    """Area of the face's shadow on the XY plane, from a tessellation (its
+    `mesh` when already made): 0 for a wall."""
+    points, triangles = mesh or _mesh(face)
     area = 0.0
     for a, b, c in triangles:
         p, q, r = points[a], points[b], points[c]
@@ -108,12 +109,13 @@ def _rises_from(floor, other, edge):
     try:
         if _normal(floor, mid).dot(_normal(other, mid)) < TANGENT_COS:
             return False
-        points = _mesh(other)[0]
+        mesh = _mesh(other)
+        points = mesh[0]
         if any(_normal(other, p).z < -1e-6 for p in points[::max(1, len(points) // 64)]):
             return False
     except (Part.OCCError, ValueError):
         return False
-    return _shadow_area(other) > 1e-6 * max(other.Area, 1.0)
+    return _shadow_area(other, mesh) > 1e-6 * max(other.Area, 1.0)
 
 
 def _face_name(model, face):
