@@ -15,10 +15,6 @@ using namespace detail;
 
 namespace {
 
-// Steeper than this (80 degrees) beside a plunge, the floor is a step, a wall
-// of the lower level (DepthSolver::plungeHeight).
-constexpr double kStepSlope = 5.67;
-
 // Compass search for a maximum of f: from x (where f is v), move by the first
 // direction x + d step that rises, halve the step when none does, down to minStep.
 template <class Point, class F>
@@ -108,21 +104,23 @@ double DepthSolver::stopHeight(Vec2 c, const Cutter& cutter) const {
 double DepthSolver::plungeHeight(Vec2 c, const Cutter& cutter, double floorAllowance, double radialAllowance) const {
   const double z = stopHeight(c, cutter) + floorAllowance;
   if (floor_.isFlat() || radialAllowance <= 0.0) return z;
-  // A step rises beside the cutter within the allowance: floor in the ring
-  // from the rim out to the allowance that stands above the cutter's bottom by
-  // more than a near-vertical slope (kStepSlope) from the rim. A slope (a
-  // fillet, a sculptured floor) keeps the floor allowance only, as under the
-  // disk. Checked on the ring's outer circle and at the floor's peaks in it
-  // (as over the disk, 4.4): a step taller than kStepSlope x the allowance
-  // anywhere in the ring keeps the cutter above its top.
-  const double R = cutter.radius, outer = R + radialAllowance;
-  double ring = rimMaximum([&](Vec2 q) { return floor_.height(q); }, c, outer, spacing_) -
-                kStepSlope * radialAllowance;
-  for (const Vec3& p : peaks_) {
-    const double d = dist({p.x, p.y}, c);
-    if (d >= R && d <= outer) ring = std::max(ring, p.z - kStepSlope * (d - R));
+  // Beside the cutter the floor keeps the radial allowance: the cutter grown
+  // sideways by it (a flat one wider, a ball or bull nose with a flat of the
+  // allowance at its centre) must not touch the floor either. Where the floor
+  // rises more than the floor allowance within the radial allowance beyond the
+  // rim (a fillet rising into its wall) this holds the cutter up; a step
+  // between two selected levels becomes a wall of the lower one.
+  return std::max(z, stopHeight(c, grownSideways(cutter, radialAllowance)));
+}
+
+Cutter grownSideways(const Cutter& cutter, double by) {
+  Cutter g = cutter;
+  g.radius += by;
+  if (cutter.shape == CutterShape::Ball) {
+    g.shape = CutterShape::Bull;
+    g.cornerRadius = cutter.radius;
   }
-  return std::max(z, ring - cutterProfile(cutter, R));
+  return g;
 }
 
 double stopHeightBruteForce(const FloorSurface& floor, Vec2 c, const Cutter& cutter, double h) {

@@ -135,6 +135,40 @@ TEST(Depth, SeveralFacesMeetingAtARidge) {
   expectTight(*floor, solver, {1, 5}, {CutterShape::Ball, 4, 4});
 }
 
+TEST(Depth, PlungeHeightKeepsBothAllowancesIn3D) {
+  // A fillet-like rise (a sigmoid, 68 degrees at its steepest) on the bumps:
+  // beside the cutter the floor rises by more than the floor allowance within
+  // the radial allowance. Sampled densely: nothing under the cutter within the
+  // floor allowance, nothing beside it within the radial allowance, and the
+  // height no higher than one of the two requires.
+  const std::string expr = std::string(kBumps) + " + 10/(1+exp(-(x-50)))";
+  const auto floor = makeExpressionFloor(expr);
+  const DepthSolver solver(*floor, {0, 0}, {100, 75}, 2.0);
+  const double fa = 0.3, ra = 0.5;
+  for (const Cutter& k : {Cutter{CutterShape::Flat, 6, 0}, Cutter{CutterShape::Ball, 5, 5}, Cutter{CutterShape::Bull, 6, 2}})
+    for (Vec2 c : {Vec2{40, 30}, Vec2{43.3, 31}, Vec2{44, 50}, Vec2{47, 20}, Vec2{30, 40}}) {
+      const double z = solver.plungeHeight(c, k, fa, ra);
+      const Cutter g = grownSideways(k, ra);
+      double under = -1e9, beside = -1e9;
+      for (double y = c.y - g.radius; y <= c.y + g.radius; y += 0.05)
+        for (double x = c.x - g.radius; x <= c.x + g.radius; x += 0.05) {
+          const double rho = dist({x, y}, c);
+          const double f = floor->height({x, y});
+          if (rho <= k.radius) under = std::max(under, f - cutterProfile(k, rho));
+          if (rho <= g.radius) beside = std::max(beside, f - cutterProfile(g, rho));
+          // The grown cutter is the tool plus the radial allowance sideways.
+          if (rho <= k.radius) EXPECT_LE(cutterProfile(g, rho + ra), cutterProfile(k, rho) + 1e-12);
+        }
+      EXPECT_GE(z, under + fa - 1e-6) << c.x << "," << c.y;
+      EXPECT_GE(z, beside - 1e-6) << c.x << "," << c.y;
+      EXPECT_LE(z, std::max(under + fa, beside) + 0.01) << c.x << "," << c.y;
+    }
+  // Where the rise is beside the cutter it holds it up; on the plain bumps it does not.
+  const Cutter flat{CutterShape::Flat, 6, 0};
+  EXPECT_GT(solver.plungeHeight({43.3, 31}, flat, fa, ra), solver.stopHeight({43.3, 31}, flat) + fa + 0.1);
+  EXPECT_NEAR(solver.plungeHeight({20, 40}, flat, fa, ra), solver.stopHeight({20, 40}, flat) + fa, 1e-9);
+}
+
 TEST(Depth, BadFloors) {
   EXPECT_THROW(makeExpressionFloor("sin(x"), Error);
   EXPECT_THROW(makeExpressionFloor("z + 1"), Error);

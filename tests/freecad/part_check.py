@@ -23,6 +23,9 @@ from gcode import parse_gcode
 V = FreeCAD.Vector
 CELL = 0.1
 TOL = 1e-3
+# A rapid may pass within this of stock: the planner's rapids ignore slivers
+# under 0.01 mm at the tool's edge (as machine_check.RAPID_TOL).
+RAPID_TOL = 0.02
 
 
 class Raster:
@@ -131,7 +134,7 @@ def check(part, stock_top, gcode, tools, radial, floor, wall_band, floor_stock, 
             low = min(a[2], b[2])
             if low >= stock_top:
                 continue
-            index, mask = raster.near_segment(a, b, r - TOL)
+            index, mask = raster.near_segment(a, b, r - RAPID_TOL)
             # The tool's bottom along the move is at least `low`; it must clear
             # what is left there (the part, or stock not yet cut).
             left = np.maximum(raster.top[index], cut[index])[mask]

@@ -148,11 +148,8 @@ def floor_z(obj, z):
     return obj.Shape.BoundBox.ZMin + z  # heights above the block's bottom, placed
 
 
-# Open (issue 22): along the walls a plunge stops on the fillet under its disk,
-# but the fillet keeps rising beyond its rim: the tool's bottom edge comes within
-# about 0.15 mm of it, less than either allowance. The allowance must hold in 3D
-# next to the disk too.
-@pytest.mark.xfail(strict=True, reason="fillets: the allowance beside the disk (issue 22, open)")
+# Along the walls the fillet keeps rising beyond a plunge's rim: the radial
+# allowance holds beside the tool as the floor allowance holds under it.
 @pytest.mark.parametrize("with_fillets", [False, True])
 def test_filleted_pocket_roughed_to_the_walls(doc, with_fillets):
     obj = filleted_pocket(doc)

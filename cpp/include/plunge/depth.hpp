@@ -35,11 +35,11 @@ class DepthSolver {
   // Throws plunge::Error when no floor is under the cutter.
   double stopHeight(Vec2 center, const Cutter& cutter) const;
   // Where a plunge at `center` stops: `floorAllowance` above the floor under the
-  // cutter, and above any step of the floor within `radialAllowance` beyond its
-  // rim. A step (where selected faces at two levels meet: floor rising steeper
-  // than 80 degrees) is a wall of the lower level: the tool keeps the radial
-  // allowance from it as from the pocket's walls. Throws plunge::Error when no
-  // floor is under the cutter.
+  // cutter, and `radialAllowance` from the floor beside it (the cutter grown
+  // sideways by it does not touch the floor). The second holds the cutter up
+  // where the floor rises steeply beyond its rim: a fillet rising into its
+  // wall, or a step between two selected levels, which is a wall of the lower
+  // one. Throws plunge::Error when no floor is under the cutter.
   double plungeHeight(Vec2 center, const Cutter& cutter, double floorAllowance, double radialAllowance) const;
   const std::vector<Vec3>& peaks() const { return peaks_; }
   const FloorSurface& floor() const { return floor_; }
@@ -49,6 +49,10 @@ class DepthSolver {
   double spacing_;
   std::vector<Vec3> peaks_;
 };
+
+// The cutter widened by `by` at every height: a flat one wider, a ball or bull
+// nose with a flat of `by` more at its centre.
+Cutter grownSideways(const Cutter& cutter, double by);
 
 // Reference: dense sampling of the disk every `spacing`, then a local
 // derivative-free refinement of the best samples. Slow; for tests and benchmarks.
