@@ -18,7 +18,7 @@ import FreeCAD
 import Part
 from PySide.QtCore import QT_TRANSLATE_NOOP
 
-from freecad_plugin import generator, geometry
+from freecad_plugin import compat, generator, geometry
 from freecad_plugin.compat import PathFeedRate, PathJob, PathOp, PathUtils
 
 __title__ = "Plunge Rough operation"
@@ -54,17 +54,17 @@ def _report(obj, message):
             comp.Active = False
 
 
-PLUNGER_SHAPES = ("endmill", "ballend", "bullnose")
+PLUNGER_SHAPES = ("endmill", "ballend", "bullnose", "plungemill")  # plungemill: plunge_mill.py
 
 
 def is_plunger(tc):
     """A tool controller that can plunge: a flat, ball or bull-nose bit (an end
-    mill's shape; not a drill, chamfer, V-bit, probe, saw or thread mill) and a
-    vertical feed to plunge with. The Job's default tool controller has none."""
+    mill's shape) or a plunge mill (plunge_mill.py), not a drill, chamfer,
+    V-bit, probe, saw or thread mill; and a vertical feed to plunge with. The Job's default tool controller has none."""
     bit = getattr(tc, "Tool", None)
     if bit is None or not hasattr(bit, "Diameter"):
         return False
-    shape = os.path.splitext(os.path.basename(str(getattr(bit, "BitShape", "endmill"))))[0].lower()
+    shape = compat.bit_shape(bit) or "endmill"
     feed = tc.VertFeed.getValueAs("mm/min").Value if hasattr(tc, "VertFeed") else 0.0
     return shape in PLUNGER_SHAPES and feed > 0
 

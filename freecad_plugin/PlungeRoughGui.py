@@ -13,6 +13,7 @@ from PySide import QtCore, QtGui
 
 from freecad_plugin import PlungeRough
 from freecad_plugin.command import ADDON, COMMAND, ICON, MENU_TEXT, TOOL_TIP
+from freecad_plugin import compat
 from freecad_plugin.compat import PathUtils, gui_modules, gui_util
 
 PathOpGui, PathSelection = gui_modules()
@@ -78,7 +79,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
     def setFields(self, obj):
         """Object to UI."""
         for spin in self.spins.values():
-            spin.updateSpinBox()
+            compat.refresh_spin_box(spin)
         self.form.useCannedCycle.setChecked(obj.UseCannedCycle)
         self.form.autoSelectTools.setChecked(obj.AutoSelectTools)
         self.form.strategy.blockSignals(True)
@@ -96,6 +97,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
         self.form.toolControllers.clear()
         for tc in self._jobToolControllers():
             item = QtGui.QListWidgetItem("T%d  %s  (%s)" % (tc.ToolNumber, tc.Label, tc.Tool.Diameter.UserString))
+            item.setToolTip(item.text())  # elided in a narrow panel
             item.setFlags(item.flags() | QtCore.Qt.ItemIsUserCheckable)
             item.setCheckState(QtCore.Qt.Checked if tc in obj.ToolControllers else QtCore.Qt.Unchecked)
             self.form.toolControllers.addItem(item)

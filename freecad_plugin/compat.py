@@ -1,9 +1,13 @@
 """The one place that knows how FreeCAD's Path/CAM API differs between versions.
 
 Supported and tested: FreeCAD 0.20.2 (Debian 12: the "Path" workbench, modules
-under PathScripts) and FreeCAD 1.0 (Debian 13: the "CAM" workbench, modules
-under Path.*). 0.21 has 1.0's module names with 0.20's workbench name; it is
-handled by the same look-ups but not tested. Everything else imports from here.
+under PathScripts), FreeCAD 1.0 (Debian 13: the "CAM" workbench, modules under
+Path.*) and FreeCAD 1.1 (Debian forky: Qt6, tool bits and their shapes are
+assets of a library, Path.Tool.ToolBit). 0.21 has 1.0's module names with
+0.20's workbench name; it is handled by the same look-ups but not tested.
+Decisions are made by what the API offers, not by version numbers; where a
+version is compared, FreeCAD's calendar versions (26.x, 27.x) are newer than
+1.1 as plain numbers. Everything else imports from here.
 """
 import importlib
 import os
@@ -31,9 +35,55 @@ PathSetupSheet = _first("Path.Base.SetupSheet", "PathScripts.PathSetupSheet")
 
 
 def version():
-    """FreeCAD's (major, minor) version, e.g. (0, 20) or (1, 0)."""
+    """FreeCAD's (major, minor) version, e.g. (0, 20), (1, 1) or (26, 3): as
+    numbers, so the calendar versions after 1.1 compare as newer."""
     major, minor = FreeCAD.Version()[:2]
     return int(major), int(minor)
+
+
+def tool_bit_from_file(path, doc=None):
+    """A tool bit document object from a .fctb file, as the Job's tool dialog
+    makes one. 1.1: Path.Tool.ToolBit (an asset; its shape from the shape
+    library), attached to doc (default: the active document). Before:
+    PathToolBit.Factory.CreateFrom."""
+    if tool_library() is None:
+        return PathToolBit.Factory.CreateFrom(path)
+    from Path.Tool import ToolBit
+    return ToolBit.from_file(path).attach_to_doc(doc or FreeCAD.ActiveDocument)
+
+
+def tool_library():
+    """FreeCAD 1.1's asset library of tool bits, shapes and libraries
+    (Path.Tool.cam_assets), or None before 1.1 (bits are .fctb files)."""
+    if getattr(PathToolBit, "Factory", None) is not None:
+        return None
+    from Path.Tool import cam_assets
+    return cam_assets
+
+
+def bit_shape(bit):
+    """A tool bit's shape, lower case: "endmill", "ballend", "bullnose", "drill",
+    ... or the name of a shape file of the user's ("plungemill"). 1.1 bits say
+    it in ShapeType (or, for a shape of the user's, "Custom" and the file's
+    name in ShapeID); before 1.1 in BitShape, the shape file's name."""
+    kind = str(getattr(bit, "ShapeType", "") or "")
+    if kind and kind.lower() != "custom":
+        return kind.lower()
+    name = str(getattr(bit, "ShapeID", "") or getattr(bit, "BitShape", "") or "")
+    return os.path.splitext(os.path.basename(name))[0].lower()
+
+
+def bit_source(bit):
+    """Where a tool bit came from, for a user to recognize it: its .fctb file
+    (before 1.1), else the library's id of the bit and its label (1.1)."""
+    return str(getattr(bit, "File", "") or "") or "%s %s" % (getattr(bit, "ToolBitID", ""), bit.Label)
+
+
+def refresh_spin_box(spin):
+    """A QuantitySpinBox helper shows its property's value again: updateSpinBox()
+    before 1.1, updateWidget() in 1.1 (GUI only)."""
+    update = getattr(spin, "updateSpinBox", None) or getattr(spin, "updateWidget")
+    update()
 
 
 def workbench_name():

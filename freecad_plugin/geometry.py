@@ -20,6 +20,8 @@ import tempfile
 import FreeCAD
 import Part
 
+from freecad_plugin import compat
+
 
 class GeometryError(ValueError):
     """The selection cannot be planned; the message says why."""
@@ -462,7 +464,7 @@ def tool_spec(tc, max_engagement=100.0, min_engagement=0.0):
     feed = tc.VertFeed.getValueAs("mm/min").Value if hasattr(tc, "VertFeed") else 0.0
     if feed > 0:
         tool["feed"] = feed  # plunge feed, for the planner's time estimate
-    shape = os.path.basename(str(getattr(bit, "BitShape", ""))).lower()
+    shape = compat.bit_shape(bit)
     if "ball" in shape:
         tool["shape"] = "ball"
     elif "bull" in shape:

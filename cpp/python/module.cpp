@@ -47,7 +47,7 @@ json toJson(const py::handle& h, const std::string& where) {
   }
   // numpy scalars and other numbers
   if (py::hasattr(h, "__float__")) return toJson(h.attr("__float__")(), where);
-  throw plunge::Error(where + ": unsupported value of type " + std::string(py::str(h.get_type().attr("__name__"))));
+  throw plunge::Error(where + ": unsupported value of type " + std::string(py::str(py::type::handle_of(h).attr("__name__"))));
 }
 
 py::object fromJson(const json& j) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <numeric>
 #include <queue>
@@ -360,14 +361,19 @@ class Coverer {
     boundaryIndex_ = decltype(boundaryIndex_)(boxes.begin(), boxes.end());
   }
 
+  // (Queries collect their hits: GCC 16 warns falsely about Boost's
+  // incremental query iterators inlined here, -Warray-bounds.)
   bool touchesBoundary(const clip::Paths& p) const {
     constexpr double tol = 3.0 / poly::kScale;
+    std::vector<BoxValue> hits;
     for (const clip::Path& q : p)
       for (const clip::IntPoint& v : q) {
         const Vec2 m = clip::toMm(v);
         const BBox b = boxOf({m.x - tol, m.y - tol}, {m.x + tol, m.y + tol});
-        for (auto it = boundaryIndex_.qbegin(bgi::intersects(b)); it != boundaryIndex_.qend(); ++it)
-          if (distanceToSegment(boundary_[it->second], m) <= tol) return true;
+        hits.clear();
+        boundaryIndex_.query(bgi::intersects(b), std::back_inserter(hits));
+        for (const auto& h : hits)
+          if (distanceToSegment(boundary_[h.second], m) <= tol) return true;
       }
     return false;
   }
@@ -428,9 +434,10 @@ class Coverer {
   }
 
   std::vector<int> piecesNear(Vec2 lo, Vec2 hi) const {
+    std::vector<BoxValue> hits;
+    pieceIndex_.query(bgi::intersects(boxOf(lo, hi)), std::back_inserter(hits));
     std::vector<int> out;
-    for (auto it = pieceIndex_.qbegin(bgi::intersects(boxOf(lo, hi))); it != pieceIndex_.qend(); ++it)
-      out.push_back(it->second);
+    for (const auto& h : hits) out.push_back(h.second);
     std::sort(out.begin(), out.end());
     return out;
   }
@@ -546,13 +553,16 @@ class Coverer {
 
     // Gaps that hold uncovered material: locate a point of every uncovered piece.
     std::vector<int> groups;
+    std::vector<BoxValue> hits;
     for (const Piece& p : pieces_) {
       if (!p.alive || p.area < crumb_) continue;
       const Vec2 q = interiorPoint(p.poly);
-      for (auto it = triIndex.qbegin(bgi::intersects(toBPoint(q))); it != triIndex.qend(); ++it) {
-        const GapTriangle& t = gaps.triangles[it->second];
+      hits.clear();
+      triIndex.query(bgi::intersects(toBPoint(q)), std::back_inserter(hits));
+      for (const BoxValue& h : hits) {
+        const GapTriangle& t = gaps.triangles[h.second];
         if (inTriangle(q, packed[t.v[0]].center, packed[t.v[1]].center, packed[t.v[2]].center)) {
-          groups.push_back(groupOfTri[it->second]);
+          groups.push_back(groupOfTri[h.second]);
           break;
         }
       }

@@ -9,7 +9,7 @@ import FreeCAD
 import Part
 
 from freecad_plugin import PlungeRough
-from freecad_plugin.compat import PathJob, PathToolBit, PathToolController
+from freecad_plugin.compat import PathJob, PathToolController, tool_bit_from_file
 
 V = FreeCAD.Vector
 
@@ -89,7 +89,7 @@ def write_tool_bit(diameter, folder):
     file would not rebuild that solid."""
     os.makedirs(folder, exist_ok=True)
     path = os.path.join(folder, "%gmm_Plunger.fctb" % diameter)
-    bit = {"version": 2, "name": "%g mm plunger" % diameter, "shape": "endmill.fcstd",
+    bit = {"version": 2, "name": "%g mm plunger" % diameter, "shape": "endmill.fcstd", "shape-type": "Endmill",
            "parameter": {"Diameter": "%g mm" % diameter, "ShankDiameter": "%g mm" % diameter,
                          "CuttingEdgeHeight": "50 mm", "Length": "100 mm"},
            "attribute": {}}
@@ -102,7 +102,7 @@ def add_tool_controller(job, diameter, number, bit_folder=None):
     """A plunger tool controller from its own .fctb (in bit_folder, default a
     temporary folder), added to the job."""
     folder = bit_folder or os.path.join(tempfile.gettempdir(), "plungerough-bits")
-    bit = PathToolBit.Factory.CreateFrom(write_tool_bit(diameter, folder))
+    bit = tool_bit_from_file(write_tool_bit(diameter, folder), job.Document)
     tc = PathToolController.Create("TC: %g mm plunger" % diameter, tool=bit, toolNumber=number)
     tc.VertFeed = "150 mm/min"
     tc.HorizFeed = "600 mm/min"

@@ -157,7 +157,9 @@ TEST(Depth, PlungeHeightKeepsBothAllowancesIn3D) {
           if (rho <= k.radius) under = std::max(under, f - cutterProfile(k, rho));
           if (rho <= g.radius) beside = std::max(beside, f - cutterProfile(g, rho));
           // The grown cutter is the tool plus the radial allowance sideways.
-          if (rho <= k.radius) EXPECT_LE(cutterProfile(g, rho + ra), cutterProfile(k, rho) + 1e-12);
+          if (rho <= k.radius) {
+            EXPECT_LE(cutterProfile(g, rho + ra), cutterProfile(k, rho) + 1e-12);
+          }
         }
       EXPECT_GE(z, under + fa - 1e-6) << c.x << "," << c.y;
       EXPECT_GE(z, beside - 1e-6) << c.x << "," << c.y;

@@ -34,18 +34,15 @@ def out():
 
 
 def install_addon():
-    """The addon as a user installs it: into the FreeCAD profile's Mod folder
-    (this test's own profile, see tests/CMakeLists.txt). FreeCAD then loads it
-    at start, and only modules of installed addons may be loaded with a
-    document (Debian's FreeCAD refuses others)."""
-    run = subprocess.run(["freecadcmd", "-c", "import FreeCAD; print('MODDIR=' + FreeCAD.getUserAppDataDir() + 'Mod')"],
-                         capture_output=True, text=True, timeout=120, cwd="/tmp")
-    mod = [l[len("MODDIR="):].strip() for l in run.stdout.replace("\r", "\n").splitlines() if l.startswith("MODDIR=")]
-    assert mod, run.stdout + run.stderr
-    shutil.rmtree(os.path.join(mod[0], "PlungeRough"), ignore_errors=True)
-    subprocess.run(["cmake", "--install", BUILD, "--component", "freecad_addon", "--prefix", mod[0]],
-                   check=True, capture_output=True)
-    return os.path.join(mod[0], "PlungeRough")
+    """The addon as a user installs it (resources/install_addon.sh: FreeCAD's
+    user Mod folder, here this test's own profile, see tests/CMakeLists.txt;
+    the plunge-mill bits with it). FreeCAD then loads it at start, and only
+    modules of installed addons may be loaded with a document (Debian's
+    FreeCAD refuses others)."""
+    run = subprocess.run(["sh", os.path.join(ROOT, "resources", "install_addon.sh")],
+                         capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr
+    return run.stdout.split("installed the addon in ")[1].split(",")[0]
 
 
 @pytest.fixture(scope="module")
@@ -118,8 +115,13 @@ def test_command_in_the_workbench(result):
 def test_new_operation_from_the_toolbar(result):
     assert "chose" not in result  # FreeCAD did not need to ask: the largest plunger is the op's own
     assert result["job_panel_closed"]
-    # Added in the Job panel's Tools tab from .fctb files through FreeCAD's file dialog.
-    assert len(result["file_dialogs"]) == 1
+    # Added in the Job panel's Tools tab from .fctb files through FreeCAD's file
+    # dialog; in 1.1 one by one from the tool library, where the user put them.
+    # (The plunge mill's phase adds one more the same way.)
+    if "library_dialogs" in result:
+        assert len(result["library_dialogs"]) == 3 + 1 and "file_dialogs" not in result
+    else:
+        assert len(result["file_dialogs"]) == 1 + 1
     assert [label.split(" plunger")[0] for label, _ in result["added_tool_controllers"]] == ["20 mm", "12 mm", "6 mm"]
     assert [checked for _, checked in result["plunger_list"]] == [True, True, True]  # no default 5 mm tool
     assert result["base"] and result["base"][0].startswith("Face")
@@ -127,6 +129,8 @@ def test_new_operation_from_the_toolbar(result):
     assert all(n > 0 for _, _, n in result["operations"])  # every tool plunges
     assert all("(" not in label for label, _, _ in result["operations"])
     assert result["radial"] == 0.5  # the panel's value reached the op
+    width, needed, scrolls = result["panel_width"]
+    assert needed <= width and scrolls is False, result["panel_width"]  # nothing cut off on the right
     assert result["strategies"] == ["Packing", "Grid (honeycomb)", "Grid (square)"]
     assert result["auto_checkbox"] is False and result["panel_icon"]
     assert "coverage" in result["summary"]
@@ -143,8 +147,22 @@ def test_cancel_undo_and_delete(result):
     assert result["after_op_delete"] == []
 
 
+def test_plunge_mill_from_the_library(result):
+    """The bit install_addon.sh put in the tool library: added to a Job in its
+    panel, a plunger the planner sees with its core and engagement limit, its
+    solid to scale, and FreeCAD's tool bit editor opens on it."""
+    mill = result["plunge_mill"]
+    assert len(mill["added"]) == 1 and "25 mm plunge mill" in mill["added"][0] and mill["plunger"]
+    spec = mill["spec"]
+    assert spec["diameter"] == 25 and spec["core_diameter"] == 13 and spec["max_engagement"] == 6
+    assert spec["center_cutting"] is False
+    assert abs(mill["solid"][0] - 25) < 0.1 and abs(mill["solid"][1] - 150) < 0.1  # to scale
+    assert mill["editor"]
+
+
 def test_screenshots(result, out):
-    names = ["example_simulated.png", "job_panel.png", "plunge_rough_panel.png", "plunge_rough_gui.png"]
+    names = ["example_simulated.png", "job_panel.png", "plunge_rough_panel.png", "plunge_rough_gui.png",
+             "plunge_mill_bit.png"]
     if result["simulator"] == "CAM_SimulatorGL":
         names.append("example_gl_simulator.png")
     for name in names:

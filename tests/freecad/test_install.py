@@ -4,6 +4,7 @@ its Init.py, the op registers with the setup sheets, and the planner module next
 to it plans, all from the Mod folder and not from the source or build tree."""
 import json
 import os
+import re
 import subprocess
 
 from conftest import BUILD, ROOT
@@ -32,7 +33,9 @@ def test_installed_addon_loads_and_plans(tmp_path):
         assert (installed / name).is_file(), name
     env = dict(os.environ, XDG_DATA_HOME=str(tmp_path / "data"), XDG_CONFIG_HOME=str(tmp_path / "config"))
     env.pop("PYTHONPATH", None)
-    run = subprocess.run(["freecadcmd", "-c", CHECK], cwd=str(tmp_path), env=env, capture_output=True, text=True,
+    check = tmp_path / "check.py"  # a file: FreeCAD 1.1 ends on a -c argument of 256 characters
+    check.write_text(CHECK)
+    run = subprocess.run(["freecadcmd", str(check)], cwd=str(tmp_path), env=env, capture_output=True, text=True,
                          timeout=300)
     lines = [l for l in run.stdout.replace("\r", "\n").splitlines() if l.startswith("RESULT=")]
     assert lines, run.stdout[-2000:] + run.stderr[-2000:]
@@ -55,3 +58,10 @@ def test_package_metadata():
     workbenches = meta.Content["workbench"]
     assert [w.Subdirectory for w in workbenches] == ["./"]
     assert os.path.isfile(os.path.join(ROOT, workbenches[0].Subdirectory, "InitGui.py"))
+    # The FreeCAD running this test is one the metadata says was tested, and not
+    # older than its minimum.
+    running = tuple(int(v) for v in FreeCAD.Version()[:2])
+    minimum = tuple(int(v) for v in workbenches[0].FreeCADMin.split(".")[:2])
+    assert running >= minimum
+    tested = re.findall(r"\d+\.\d+", meta.Description.split("Tested with FreeCAD ")[1].split("(")[0])
+    assert "%d.%d" % running in tested, tested

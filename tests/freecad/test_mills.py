@@ -5,10 +5,13 @@ plunger for its start holes, lead-out on. The plan, the simulation with each
 tool's own solid and the posted program, run through the G-code checker."""
 import json
 import math
+import os
 
+import FreeCAD
+import pytest
 
 import parts
-from freecad_plugin import PlungeRough
+from freecad_plugin import PlungeRough, compat, plunge_mill
 from freecad_plugin.compat import post_job
 from gcode import parse_gcode, replay
 from machine_check import assert_machinable, check_program
@@ -90,3 +93,57 @@ def test_a_plunge_cutter_without_a_start_hole_tool_is_reported(doc):
     doc.recompute()
     assert PlungeRough.plan_of(op) is None
     assert "does not cut at its centre" in op.Summary and "centre-cutting tool" in op.Summary
+
+
+def library_plunge_mill(doc, root, diameter):
+    """The plunge mill of the given diameter as a user picks it from the tool
+    library that plunge_mill.install() made (what resources/install_addon.sh
+    runs): up to 1.0 the library file lists bit files beside it, each finding
+    its shape in the Shape folder; in 1.1 the library is an asset of the user's
+    CAM library, its bits and their shape too."""
+    plunge_mill.install(root)
+    name = plunge_mill.bit_name({"Diameter": diameter})
+    assets = compat.tool_library()
+    if assets is None:
+        with open(os.path.join(root, "Tools", "Library", plunge_mill.LIBRARY + ".fctl")) as f:
+            library = json.load(f)
+        paths = [os.path.join(root, "Tools", "Bit", t["path"]) for t in library["tools"]]
+        path = next(p for p in paths if json.load(open(p))["name"] == name)
+        return compat.tool_bit_from_file(path, doc)
+    library = assets.get("toolbitlibrary://" + plunge_mill.LIBRARY)
+    bit = next(b for b in library.get_bits() if b.label == name)
+    return bit.attach_to_doc(doc)
+
+
+def test_a_plunge_mill_from_the_tool_library_plans_with_its_core_and_limit(doc, tmp_path):
+    job = parts.make_job(doc, parts.islands_part())
+    bit = library_plunge_mill(doc, str(tmp_path), 25)
+    assert compat.bit_shape(bit) == plunge_mill.SHAPE
+    # The bit's solid is the shape's, to scale: diameter, and the core recess
+    # (no material on the axis just above the tip).
+    box = bit.Shape.BoundBox
+    assert box.XLength == pytest.approx(25, abs=1e-6) and box.ZMin == pytest.approx(0, abs=1e-6)
+    assert not bit.Shape.isInside(FreeCAD.Vector(0, 0, 1), 1e-6, True)
+    assert bit.Shape.isInside(FreeCAD.Vector(10, 0, 1), 1e-6, True)
+    mill = compat.PathToolController.Create("TC: 25 mm plunge mill", tool=bit, toolNumber=5)
+    mill.VertFeed = "150 mm/min"
+    job.Proxy.addToolController(mill)
+    small = parts.add_tool_controller(job, 16, 6)  # centre-cutting, wider than the core: the start holes
+    assert PlungeRough.is_plunger(mill)
+    op = PlungeRough.Create("PlungeRough", parentJob=job)
+    op.Base = [(job.Model.Group[0], [parts.floor_face_name(job.Model.Group[0].Shape, False)])]
+    op.ToolControllers = [mill, small]
+    op.RadialAllowance = 0.5
+    doc.recompute()
+    plan = PlungeRough.plan_of(op)
+    assert plan is not None, op.Summary
+    spec = PlungeRough.geometry.tool_spec(mill)
+    assert spec["center_cutting"] is False and spec["core_diameter"] == 13.0 and spec["max_engagement"] == 6.0
+    assert spec["flute_length"] == 80.0
+    mine = [p for p in plan["plunges"] if p["tool_id"] == 5]
+    assert mine and plan["stats"]["start_holes"] >= 1
+    text = post_job(job, "linuxcnc", "--no-header --no-show-editor")
+    data = json.loads(op.PlanData)["input"]
+    report = check_program(data, data["tools"], text)
+    assert_machinable(report)
+    assert report["max_engagement"][5] <= 6.0 + 1.5 * 0.75

@@ -7,6 +7,7 @@
 #   sh tests/fresh/run.sh bookworm          # Debian 12, FreeCAD 0.20.2: both commands
 #   sh tests/fresh/run.sh trixie test       # Debian 13, FreeCAD 1.0: the test command only
 #   sh tests/fresh/run.sh trixie main       # ... the main command only
+#   sh tests/fresh/run.sh forky             # Debian testing, FreeCAD 1.1: both
 #
 # Only the debootstrap result is cached (PLUNGE_FRESH_CACHE, default
 # /var/cache/plungerough-fresh/SUITE-minbase.tar): it *is* the fresh machine.
@@ -18,7 +19,7 @@
 # -Werror, see resources/setup.sh).
 # Needs root on a Debian host (debootstrap is installed if missing).
 set -eu
-SUITE=${1:?usage: run.sh bookworm|trixie [all|main|test]}
+SUITE=${1:?usage: run.sh bookworm|trixie|forky [all|main|test]}
 WHAT=${2:-all}
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 CACHE=${PLUNGE_FRESH_CACHE:-/var/cache/plungerough-fresh}
@@ -27,7 +28,7 @@ DIR=$BASE/$SUITE
 say() { echo "fresh[$SUITE]: $*"; }
 die() { echo "fresh[$SUITE]: $*" >&2; exit 1; }
 
-case $SUITE in bookworm|trixie) ;; *) die "unknown suite '$SUITE' (bookworm or trixie)";; esac
+case $SUITE in bookworm|trixie|forky) ;; *) die "unknown suite '$SUITE' (bookworm, trixie or forky)";; esac
 case $WHAT in all|main|test) ;; *) die "unknown step '$WHAT' (all, main or test)";; esac
 [ "$(id -u)" -eq 0 ] || die "needs root (debootstrap, chroot, mounts)"
 
@@ -68,7 +69,10 @@ if [ ! -s "$TARBALL" ]; then
   mkdir -p "$CACHE"
   tmp=$CACHE/$SUITE.tmp
   rm -rf --one-file-system "$tmp"
-  debootstrap --variant=minbase "$SUITE" "$tmp" "$MIRROR" >"$CACHE/$SUITE-debootstrap.log" 2>&1 \
+  # Debian 12's debootstrap has no script for forky; sid's makes testing as well.
+  script=
+  [ "$SUITE" = forky ] && [ ! -e /usr/share/debootstrap/scripts/forky ] && script=/usr/share/debootstrap/scripts/sid
+  debootstrap --variant=minbase "$SUITE" "$tmp" "$MIRROR" $script >"$CACHE/$SUITE-debootstrap.log" 2>&1 \
     || { tail -n 20 "$CACHE/$SUITE-debootstrap.log" >&2; die "debootstrap failed"; }
   rm -rf "$tmp"/var/cache/apt/archives/*.deb
   tar -C "$tmp" -cf "$TARBALL.part" . && mv "$TARBALL.part" "$TARBALL"
@@ -81,6 +85,10 @@ mkdir -p "$DIR"
 trap release EXIT INT TERM
 tar -C "$DIR" -xf "$TARBALL"
 cp /etc/resolv.conf "$DIR/etc/resolv.conf"
+# A mirror's testing Release file can be past its Valid-Until date (the mirror
+# here is a snapshot); a machine on a live mirror never sees that.
+[ "$SUITE" = forky ] && printf 'Acquire::Check-Valid-Until "false";\nAcquire::Check-Date "false";\n' \
+  >"$DIR/etc/apt/apt.conf.d/99plungerough-snapshot"
 mount -t proc proc "$DIR/proc"
 mount -t sysfs sysfs "$DIR/sys"
 mount --rbind /dev "$DIR/dev"

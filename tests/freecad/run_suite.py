@@ -1,0 +1,17 @@
+"""pytest inside freecadcmd (Debian's python3 with FreeCAD's modules): the
+suite named by PLUNGE_SUITE, "freecad" (headless) or "freecad_gui" (FreeCAD
+under xvfb, started by the tests). A script file, not `freecadcmd -c`: FreeCAD
+1.1 ends with "Application unexpectedly terminated" on a -c argument of 256
+characters or more."""
+import os
+import sys
+
+import pytest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SUITES = {
+    "freecad": [HERE, "--ignore=" + os.path.join(HERE, "test_gui.py")],
+    "freecad_gui": [os.path.join(HERE, "test_gui.py")],
+}
+suite = os.environ.get("PLUNGE_SUITE", "freecad")
+sys.exit(int(pytest.main(["-q", "-p", "no:cacheprovider"] + SUITES[suite])))
