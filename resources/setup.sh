@@ -1,5 +1,5 @@
 #!/bin/sh
-# Installs what PlungeRough needs from Debian 12 or 13 (only what is missing) and builds it.
+# Installs what PlungeRough needs from Debian 12, 13 or testing (only what is missing) and builds it.
 # Idempotent: run it as often as you like; both README commands start with it.
 # --packages-only: install, do not build (tests/fuzz/run.sh builds its own).
 set -eu
@@ -13,16 +13,21 @@ PACKAGES="cmake g++ make pkg-config
   pybind11-dev python3-dev libgtest-dev python3-pytest python3-shapely python3-jsonschema python3-scipy
   freecad xvfb xauth libgl1-mesa-dri"
 
-missing=""
-for p in $PACKAGES; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
-done
-if [ -n "$missing" ]; then
+installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
+install_missing() {
+  missing=""
+  for p in "$@"; do installed "$p" || missing="$missing $p"; done
+  [ -n "$missing" ] || return 0
   echo "setup: installing$missing"
   if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=""; fi
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive DEBCONF_NOWARNINGS=yes $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
-fi
+}
+install_missing $PACKAGES
+# FreeCAD on Qt 6 (1.1, Debian forky) draws check marks and icons from SVG:
+# Qt 6's SVG image plugin is only recommended by its GUI library, and
+# --no-install-recommends leaves it out (every check box then looks unticked).
+if installed libqt6gui6; then install_missing qt6-svg-plugins; fi
 [ "${1:-}" = --packages-only ] && exit 0
 
 cmake -S "$ROOT" -B "$ROOT/build" -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=/usr/bin/python3 \

@@ -55,6 +55,8 @@ def step(name):
 def watch_dialogs():
     """A modal dialog would block this script forever: record its text, close it,
     and let the test fail on it instead of timing out."""
+    if answer.get("busy"):
+        return
     w = QtGui.QApplication.activeModalWidget()
     combo = w.findChild(QtGui.QComboBox, "uiToolController") if w is not None else None
     if isinstance(w, QtGui.QFileDialog) and answer["files"]:  # pick files, as the user does
@@ -85,6 +87,13 @@ def watch_dialogs():
             result.setdefault("dialogs", []).append("Select Toolbit without %s" % answer["bit"])
             answer["bit"] = None
             w.reject()
+    elif w is not None and answer.get("editor"):  # 1.1's tool bit editor: its picture, then closed
+        answer["busy"] = True  # screenshot() lets this timer fire again meanwhile
+        try:
+            screenshot(answer["editor"])
+        finally:
+            answer["editor"], answer["busy"] = None, False
+        w.reject()
     elif combo is not None and answer["tc"]:  # FreeCAD's "Choose a Tool Controller"
         combo.setCurrentIndex(combo.findText(answer["tc"]))
         result["chose"] = combo.currentText()
@@ -247,6 +256,10 @@ def example_document():
     play = mw.findChild(QtGui.QToolButton, "toolButtonPlay")
     wait(1)
     wait(400, lambda: play.isEnabled())
+    # No reference to the panel's widgets may outlive it: PySide6 (1.1) would
+    # hand this stale wrapper to the next widget made at the same address (the
+    # OpenGL simulator's own Play button: "already deleted" inside FreeCAD).
+    del play
     meshes = [o for o in doc.Objects if o.Name.startswith("CutMaterial")]
     plan = PlungeRough.plan_of(op)["plunges"]
     top = job.Stock.Shape.BoundBox.ZMax
@@ -335,6 +348,7 @@ def new_job():
             answer["bit"] = os.path.splitext(name)[0]  # its id in the library
             add.click()
             wait(1, lambda: answer["bit"] is None)
+    del add  # the panel's widget: no wrapper of it may outlive the panel (see example_document)
     tcs = sorted([tc for tc in job.Tools.Group if tc.Tool.Label.endswith("mm plunger")],
                  key=lambda tc: -float(tc.Tool.Diameter))
     result["added_tool_controllers"] = [(tc.Label, int(tc.ToolNumber)) for tc in tcs]
@@ -377,6 +391,7 @@ def new_job():
     result["panel_width"] = [page.form.width(), page.form.minimumSizeHint().width(),
                              area.horizontalScrollBar().isVisible() if area is not None else None]
     screenshot("plunge_rough_panel.png")
+    del panel, page, items, area  # no wrapper of the panel's widgets may outlive it (see example_document)
     click_task_button("OK")
     doc.recompute()
     step("accepted")
@@ -480,23 +495,36 @@ def plunge_mill_bit():
     result["plunge_mill"].update({"plunger": PlungeRough.is_plunger(tc), "spec": spec,
                                   "solid": [round(v, 3) for v in (tc.Tool.Shape.BoundBox.XLength,
                                                                   tc.Tool.Shape.BoundBox.ZLength)]})
-    # The bit alone in the view, as the editor's preview.
-    for o in doc.Objects:
-        if o.ViewObject is not None:
-            o.ViewObject.Visibility = False
-    tc.Tool.ViewObject.Visibility = True
-    view = FreeCADGui.ActiveDocument.ActiveView
-    view.viewIsometric()  # turned over: from below, the core's recess and the inserts' ring
-    view.setCameraOrientation(FreeCAD.Rotation(FreeCAD.Vector(1, 0, 0), 180).multiply(view.getCameraOrientation()))
-    FreeCADGui.SendMsgToActiveView("ViewFit")
-    FreeCADGui.ActiveDocument.setEdit(tc.Tool.Name)  # as a double click on the bit in the tree
-    wait(2)
-    result["plunge_mill"]["editor"] = bool(FreeCADGui.Control.activeDialog())
-    screenshot("plunge_mill_bit.png")
-    click_task_button("Cancel")
-    wait(1)
-    if FreeCADGui.Control.activeDialog():
-        FreeCADGui.Control.closeDialog()
+    if compat.tool_library() is None:
+        # Before 1.1: a double click on the bit in the tree opens the tool bit
+        # editor as a task panel; the bit alone in the view, turned over: from
+        # below, the core's recess and the inserts' ring.
+        for o in doc.Objects:
+            if o.ViewObject is not None:
+                o.ViewObject.Visibility = False
+        tc.Tool.ViewObject.Visibility = True
+        view = FreeCADGui.ActiveDocument.ActiveView
+        view.viewIsometric()
+        view.setCameraOrientation(FreeCAD.Rotation(FreeCAD.Vector(1, 0, 0), 180).multiply(
+            view.getCameraOrientation()))
+        FreeCADGui.SendMsgToActiveView("ViewFit")
+        FreeCADGui.ActiveDocument.setEdit(tc.Tool.Name)
+        wait(2)
+        result["plunge_mill"]["editor"] = bool(FreeCADGui.Control.activeDialog())
+        screenshot("plunge_mill_bit.png")
+        click_task_button("Cancel")
+        wait(1)
+        if FreeCADGui.Control.activeDialog():
+            FreeCADGui.Control.closeDialog()
+    else:
+        # 1.1 edits bits in the library: the Toolbit Library Manager's Edit
+        # opens this editor on the library's bit (a double click on the bit in
+        # the tree fails inside FreeCAD 1.1.3's own task panel). Modal:
+        # watch_dialogs takes the picture and closes it.
+        from Path.Tool.toolbit.ui.editor import ToolBitEditor
+        answer["editor"] = "plunge_mill_bit.png"
+        ToolBitEditor(compat.tool_library().get("toolbit://" + os.path.splitext(name)[0])).show()
+        result["plunge_mill"]["editor"] = answer["editor"] is None
     step("plunge mill in the tool bit editor")
 
 
@@ -512,6 +540,9 @@ def main():
     from freecad_plugin import compat
     result["addon"] = os.path.dirname(os.path.dirname(os.path.abspath(compat.__file__)))
     result["workbench"] = compat.workbench_name()
+    # FreeCAD draws check marks and icons from SVG: without Qt's SVG image
+    # plugin every ticked box looks unticked (a Qt 6 set-up without it).
+    result["svg_images"] = "svg" in [bytes(f).decode() for f in QtGui.QImageReader.supportedImageFormats()]
     example_document()
     new_job()
     plunge_mill_bit()

@@ -14,4 +14,8 @@ SUITES = {
     "freecad_gui": [os.path.join(HERE, "test_gui.py")],
 }
 suite = os.environ.get("PLUNGE_SUITE", "freecad")
-sys.exit(int(pytest.main(["-q", "-p", "no:cacheprovider"] + SUITES[suite])))
+code = int(pytest.main(["-q", "-p", "no:cacheprovider"] + SUITES[suite]))
+# FreeCAD 1.1 drops what is still buffered when the script exits: the failures' report.
+sys.stdout.flush()
+sys.stderr.flush()
+sys.exit(code)

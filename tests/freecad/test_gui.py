@@ -78,6 +78,7 @@ def test_the_session_ran_without_errors(result):
     assert result["addon"].endswith(os.path.join("Mod", "PlungeRough"))  # the installed copy
     assert not result.get("dialogs"), result["dialogs"]  # no unexpected modal dialog
     assert result["report_found"] and not result["report"], result["report"]  # nothing red in the report view
+    assert result["svg_images"]  # FreeCAD's check marks and icons are drawn (resources/setup.sh)
 
 
 def test_example_document_is_a_gui_document(result):
@@ -122,7 +123,9 @@ def test_new_operation_from_the_toolbar(result):
         assert len(result["library_dialogs"]) == 3 + 1 and "file_dialogs" not in result
     else:
         assert len(result["file_dialogs"]) == 1 + 1
-    assert [label.split(" plunger")[0] for label, _ in result["added_tool_controllers"]] == ["20 mm", "12 mm", "6 mm"]
+    # ("TC: " before the bit's name in 1.1's tool controller labels)
+    assert [label.split(" plunger")[0].replace("TC: ", "") for label, _ in result["added_tool_controllers"]] == \
+        ["20 mm", "12 mm", "6 mm"]
     assert [checked for _, checked in result["plunger_list"]] == [True, True, True]  # no default 5 mm tool
     assert result["base"] and result["base"][0].startswith("Face")
     assert [d for _, d, _ in result["operations"]] == [20, 12, 6]
