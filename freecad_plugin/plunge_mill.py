@@ -31,6 +31,9 @@ import FreeCAD
 from freecad_plugin import compat
 
 SHAPE = "plungemill"  # the shape's file name (plungemill.fcstd) and id
+# The shape's picture with its parameters (the tool bit editor shows it in 1.1).
+PICTURE = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "resources", "tools",
+                       SHAPE + ".svg")
 LABEL = "PlungeMill"  # the shape's Body label: FreeCAD 1.1 names the shape by it
 LIBRARY = "PlungeMills"
 
@@ -154,8 +157,10 @@ def install(root):
     """Shape, bits and library under root/Tools (Shape, Bit, Library); in 1.1
     also in the user's CAM asset library. Returns the bits' file paths."""
     import pathlib
+    import shutil
     tools = os.path.join(root, "Tools")
     shape = make_shape(os.path.join(tools, "Shape", SHAPE + ".fcstd"))
+    picture = shutil.copy(PICTURE, os.path.join(tools, "Shape", SHAPE + ".svg"))
     bits = []
     for i, p in enumerate(BITS):
         path = os.path.join(tools, "Bit", bit_file_name(p))
@@ -171,6 +176,7 @@ def install(root):
     assets = compat.tool_library()
     if assets is not None:
         assets.add_file("toolbitshape", pathlib.Path(shape))
+        assets.add_file("toolbitshapesvg", pathlib.Path(picture), asset_id=SHAPE + ".svg")
         for b in bits:
             assets.add_file("toolbit", pathlib.Path(b))
         assets.add_file("toolbitlibrary", pathlib.Path(library))
