@@ -351,6 +351,8 @@ std::string planToJson(const Plan& plan) {
       if (r.evaluated) {
         o["plunges"] = r.plunges;
         o["coverage"] = r.coverage;
+      } else if (!r.refused.empty()) {
+        o["refused"] = r.refused;
       } else {
         o["pruned"] = r.subtree ? "with every set adding smaller candidates" : "lower bound";
       }

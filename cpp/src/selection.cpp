@@ -128,10 +128,15 @@ class ToolSetSearch {
       perPlungeLB_ = std::min(perPlungeLB_, (in.safeZ - zHigh) * (1.0 / t.feed + 1.0 / in.timeModel.retractRate));
   }
 
-  // The best plan found; throws when none could be planned.
+  // The best plan found; throws when none could be planned, with every set's reason.
   Plan run() {
     search(0);
-    if (!bestPlan_) throw Error("tool selection: no tool set could be planned");
+    if (!bestPlan_) {
+      std::string why;
+      for (const ToolSetResult& r : sel_.sets)
+        if (!r.refused.empty()) why += "; " + setName(r.diameters) + ": " + r.refused;
+      throw Error("tool selection: no tool set could be planned" + why);
+    }
     return std::move(*bestPlan_);
   }
   size_t setCount() const { return size_t{1} << others_.size(); }
@@ -140,7 +145,7 @@ class ToolSetSearch {
   void search(size_t i) {
     const double lb = lowerBound(i);
     if (lb >= best_) return prune(i, lb);
-    if (i == others_.size()) return evaluate();
+    if (i == others_.size()) return evaluate(lb);
     included_.push_back(others_[i]);
     search(i + 1);
     included_.pop_back();
@@ -168,7 +173,7 @@ class ToolSetSearch {
     sel_.sets.push_back(r);
   }
 
-  void evaluate() {
+  void evaluate(double lb) {
     ToolSetResult r;
     r.diameters = current();
     PlanInput sub = in_;
@@ -177,7 +182,19 @@ class ToolSetSearch {
     for (double d : r.diameters) sub.tools.push_back(toolOf(d));
     // The k-th planned set takes its share of the progress (at most 2^n sets).
     const double share = 1.0 / static_cast<double>(setCount());
-    Plan p = planSet_(sub, progress_.sub(planned_ * share, (planned_ + 1) * share));
+    std::optional<Plan> planned;
+    try {
+      planned = planSet_(sub, progress_.sub(planned_ * share, (planned_ + 1) * share));
+    } catch (const Error& e) {
+      // A set this job cannot plan (say a plunge mill without a drill as wide
+      // as its core) is skipped with its reason; only "no set" is an error.
+      ++planned_;
+      r.refused = e.what();
+      r.minutes = r.weighted = lb;
+      sel_.sets.push_back(r);
+      return;
+    }
+    Plan& p = *planned;
     ++planned_;
     r.evaluated = true;
     r.plunges = p.stats.plungeCount;
@@ -220,15 +237,21 @@ class ToolSetSearch {
 
 // The search's outcome in the reasoning: every planned set and the choice.
 void reportSearch(const PlanInput& in, ToolSelection& sel, size_t setCount) {
-  int evaluated = 0;
-  for (const ToolSetResult& r : sel.sets) evaluated += r.evaluated;
-  sel.reasoning.push_back(fmt("branch and bound: %g of %g tool sets planned, the rest pruned by their lower bound",
-                              evaluated, static_cast<double>(setCount)));
+  int evaluated = 0, refused = 0;
+  for (const ToolSetResult& r : sel.sets) {
+    evaluated += r.evaluated;
+    refused += !r.refused.empty();
+  }
+  sel.reasoning.push_back(fmt("branch and bound: %g of %g tool sets planned, %g cannot be, the rest pruned by their "
+                              "lower bound",
+                              evaluated, static_cast<double>(setCount), refused));
   for (const ToolSetResult& r : sel.sets)
     if (r.evaluated)
       sel.reasoning.push_back("  " + setName(r.diameters) +
                               fmt(": %g plunges, coverage %.2f %%, %.1f min, weighted %.2f", r.plunges,
                                   100 * r.coverage, r.minutes, r.weighted));
+    else if (!r.refused.empty())
+      sel.reasoning.push_back("  " + setName(r.diameters) + ": cannot be planned: " + r.refused);
   sel.reasoning.push_back("chosen: " + setName(sel.chosen) +
                           fmt(" (weights: time %g, tools %g)", in.selection.weightTime, in.selection.weightTools));
 }

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 
 #include "plunge/error.hpp"
@@ -101,6 +102,46 @@ TEST(Selection, WeightOnToolCountPrefersFewerTools) {
 TEST(Selection, Deterministic) {
   const PlanInput in = neckInput();
   test::expectSamePlunges(plan(in), plan(in));
+}
+
+TEST(Selection, SetsThatCannotBePlannedAreSkippedWithTheirReason) {
+  // A plunge mill that does not cut its 8 mm core, and 10 and 6 mm end mills:
+  // with the 6 mm alone it has no tool to drill its start holes.
+  PlanInput in = neckInput();
+  in.library.clear();
+  Tool mill{20.0, 1, 300.0};
+  mill.centerCutting = false;
+  mill.coreDiameter = 8.0;
+  in.library = {mill, {10.0, 2, 200.0}, {6.0, 3, 160.0}};
+  const Plan p = plan(in);
+  ASSERT_TRUE(p.selection);
+  const auto& chosen = p.selection->chosen;
+  const bool withMill = std::find(chosen.begin(), chosen.end(), 20.0) != chosen.end();
+  EXPECT_TRUE(!withMill || std::find(chosen.begin(), chosen.end(), 10.0) != chosen.end());
+  int refused = 0;
+  for (const ToolSetResult& r : p.selection->sets)
+    if (!r.refused.empty()) {
+      ++refused;
+      EXPECT_FALSE(r.evaluated);
+      EXPECT_NE(r.refused.find("does not cut at its centre"), std::string::npos) << r.refused;
+      EXPECT_NE(std::find(r.diameters.begin(), r.diameters.end(), 20.0), r.diameters.end());
+      EXPECT_EQ(std::find(r.diameters.begin(), r.diameters.end(), 10.0), r.diameters.end());
+    }
+  EXPECT_EQ(refused, 1);  // {20, 6}: every other set plans
+  // Only when no set can be planned is it an error, with the reason: two plunge
+  // mills and nothing to drill their start holes (found before any set is tried).
+  Tool small = mill;
+  small.diameter = 12.0;
+  small.id = 2;
+  small.coreDiameter = 6.0;
+  in.library = {mill, small};
+  try {
+    plan(in);
+    FAIL() << "planned without a centre-cutting tool";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("does not cut at its centre"), std::string::npos) << what;
+  }
 }
 
 TEST(Selection, BadLibrary) {

@@ -288,8 +288,9 @@ def example_document():
 
 
 def play_gl_simulator():
-    """FreeCAD 1.0's OpenGL CAM simulator: its own window, played with its
-    on-screen buttons along the bottom edge: faster (>>, twice), then play."""
+    """FreeCAD 1.0's and 1.1's OpenGL CAM simulator: its own window, played
+    with its on-screen buttons along the bottom edge: faster (>>, twice), then
+    play."""
     for o in FreeCAD.ActiveDocument.Objects:
         if o.ViewObject is not None and not o.Name.startswith("CutMaterial"):
             o.ViewObject.Visibility = True
@@ -300,8 +301,12 @@ def play_gl_simulator():
     windows = [w for w in QtGui.QGuiApplication.topLevelWindows()
                if w.isVisible() and w is not mw.windowHandle() and w.width() > 200]
     result["gl_simulator_windows"] = len(windows)
+    # Its buttons are drawn in OpenGL, not widgets: by position. 1.1 added a
+    # slower button before the faster one.
+    from freecad_plugin import compat
+    faster, play = (173, 39) if compat.version() >= (1, 1) else (136, 52)
     for w in windows:
-        for x in (136, 136, 52):
+        for x in (faster, faster, play):
             click(w, QtCore.QPointF(x, w.height() - 34))
     wait(110)  # x40: the whole job, about a minute and a half under xvfb
     screenshot("example_gl_simulator.png")
@@ -504,9 +509,9 @@ def plunge_mill_bit():
                 o.ViewObject.Visibility = False
         tc.Tool.ViewObject.Visibility = True
         view = FreeCADGui.ActiveDocument.ActiveView
-        view.viewIsometric()
-        view.setCameraOrientation(FreeCAD.Rotation(FreeCAD.Vector(1, 0, 0), 180).multiply(
-            view.getCameraOrientation()))
+        # Absolute (a preset view animates): 35 degrees below the tip, a quarter turned.
+        view.setCameraOrientation(FreeCAD.Rotation(FreeCAD.Vector(0, 0, 1), 45).multiply(
+            FreeCAD.Rotation(FreeCAD.Vector(1, 0, 0), 125)))
         FreeCADGui.SendMsgToActiveView("ViewFit")
         FreeCADGui.ActiveDocument.setEdit(tc.Tool.Name)
         wait(2)

@@ -51,6 +51,7 @@ struct ToolSetResult {
   double coverage = 0.0;
   double minutes = 0.0;     // planned time, or the lower bound when pruned
   double weighted = 0.0;
+  std::string refused;      // why this set cannot be planned (not evaluated, not pruned)
 };
 
 struct ToolSelection {
