@@ -15,19 +15,6 @@
 
 namespace plunge {
 
-double estimateMinutes(const Plan& plan, const std::vector<Tool>& tools, double safeZ, const TimeModel& m) {
-  double minutes = 0.0;
-  for (const Plunge& p : plan.plunges) {
-    double feed = 200.0;
-    for (const Tool& t : tools)
-      if (t.id == p.toolId) feed = t.feed;
-    const double depth = safeZ - p.z;
-    minutes += depth / feed + depth / m.retractRate;
-  }
-  // perTool lists the tools that plunge: one change each.
-  return minutes + plan.stats.travelLength / m.rapidRate + plan.stats.perTool.size() * m.toolChangeSeconds / 60.0;
-}
-
 namespace {
 
 std::string fmt(const char* f, double a, double b = 0, double c = 0, double d = 0, double e = 0) {

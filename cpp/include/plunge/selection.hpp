@@ -33,10 +33,6 @@ struct TimeModel {
   double toolChangeSeconds = 20.0;  // per tool used
 };
 
-// Plunges (down at each tool's feed from the safe height, up at the retract
-// rate) + rapid travel + tool changes, in minutes.
-double estimateMinutes(const Plan& plan, const std::vector<Tool>& tools, double safeZ, const TimeModel& model);
-
 struct SelectionOptions {
   double weightTime = 1.0;   // weights of the thesis's weighted time (minutes)
   double weightTools = 0.0;  // ... and of the number of tools
