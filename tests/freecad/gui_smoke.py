@@ -295,9 +295,17 @@ def play_gl_simulator():
         if o.ViewObject is not None and not o.Name.startswith("CutMaterial"):
             o.ViewObject.Visibility = True
     FreeCADGui.runCommand("CAM_SimulatorGL")
-    wait(2)
     mw = FreeCADGui.getMainWindow()
-    mw.findChild(QtGui.QToolButton, "toolButtonPlay").click()
+
+    def play_button():  # its panel's, shown (on a loaded machine it takes a while)
+        return next((b for b in mw.findChildren(QtGui.QToolButton, "toolButtonPlay") if b.isVisible()), None)
+    wait(60, lambda: play_button() is not None)
+    wait(1)
+    button = play_button()
+    if button is None:
+        raise RuntimeError("the OpenGL simulator's panel did not open")
+    button.click()
+    del button  # no wrapper of the panel's widgets may outlive it (see example_document)
     windows = [w for w in QtGui.QGuiApplication.topLevelWindows()
                if w.isVisible() and w is not mw.windowHandle() and w.width() > 200]
     result["gl_simulator_windows"] = len(windows)
