@@ -73,12 +73,6 @@ def bit_shape(bit):
     return os.path.splitext(os.path.basename(name))[0].lower()
 
 
-def bit_source(bit):
-    """Where a tool bit came from, for a user to recognize it: its .fctb file
-    (before 1.1), else the library's id of the bit and its label (1.1)."""
-    return str(getattr(bit, "File", "") or "") or "%s %s" % (getattr(bit, "ToolBitID", ""), bit.Label)
-
-
 def refresh_spin_box(spin):
     """A QuantitySpinBox helper shows its property's value again: updateSpinBox()
     before 1.1, updateWidget() in 1.1 (GUI only)."""

@@ -162,7 +162,7 @@ def install(root):
     shape = make_shape(os.path.join(tools, "Shape", SHAPE + ".fcstd"))
     picture = shutil.copy(PICTURE, os.path.join(tools, "Shape", SHAPE + ".svg"))
     bits = []
-    for i, p in enumerate(BITS):
+    for p in BITS:
         path = os.path.join(tools, "Bit", bit_file_name(p))
         os.makedirs(os.path.dirname(path), exist_ok=True)
         with open(path, "w") as f:
