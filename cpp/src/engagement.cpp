@@ -36,6 +36,11 @@ const Tool& startHoleTool(const std::vector<Tool>& tools, const Tool& tool) {
 
 namespace {
 
+// Centres this much farther from the allowed region than the radius: the
+// offset's arcs are chords whose midpoints lie up to kArcTolerance inside, and
+// a plunge there must still fit (Region::diskFits).
+constexpr double kCentreMargin = 0.01;
+
 // The material a tool must clear: points sampled on the height field's raster
 // inside its planned disks, each with the height the planned plunges cut it to.
 class Targets {
@@ -78,8 +83,11 @@ class Targets {
       for (long i = bi - 1; i <= bi + 1; ++i) {
         auto it = grid_.find(pack(i, j));
         if (it == grid_.end()) continue;
-        for (size_t k : it->second)
-          if (!points_[k].done && (withDeferred || !points_[k].deferred) && dist(points_[k].p, c) <= r) f(k);
+        for (size_t k : it->second) {
+          if (points_[k].done || (!withDeferred && points_[k].deferred)) continue;
+          const Vec2 d = points_[k].p - c;
+          if (d.x * d.x + d.y * d.y <= r * r) f(k);
+        }
       }
   }
   int gain(Vec2 c, const Cutter& cutter, double z, const HeightField& stock) const {
@@ -113,6 +121,15 @@ class Targets {
         --left_;
       }
     });
+  }
+  // Gives up the points `skip` says need no cutting.
+  template <class F>
+  void forget(F skip) {
+    for (Point& q : points_)
+      if (!q.done && skip(q.p)) {
+        q.done = true;
+        --left_;
+      }
   }
   size_t left() const { return left_; }
   size_t size() const { return points_.size(); }
@@ -171,6 +188,111 @@ std::vector<Vec2> walk(const Polygons& ring, Vec2 at, double step) {
   return out;
 }
 
+// The long axis of a region: the direction of its largest second moment of
+// area about its centroid (the principal axis; rows run along it).
+double longAxis(const Polygons& region) {
+  if (region.empty() || region.front().empty()) return 0.0;
+  const Vec2 o = region.front().front();  // moments about a nearby point keep precision
+  double a = 0, sx = 0, sy = 0, xx = 0, yy = 0, xy = 0;
+  for (const Loop& l : region)
+    for (size_t i = 0; i < l.size(); ++i) {
+      const Vec2 p = l[i] - o, q = l[(i + 1) % l.size()] - o;
+      const double w = cross(p, q);
+      a += w / 2;
+      sx += (p.x + q.x) * w / 6;
+      sy += (p.y + q.y) * w / 6;
+      xx += (p.x * p.x + p.x * q.x + q.x * q.x) * w / 12;
+      yy += (p.y * p.y + p.y * q.y + q.y * q.y) * w / 12;
+      xy += (p.x * q.y + 2 * p.x * p.y + 2 * q.x * q.y + q.x * p.y) * w / 24;
+    }
+  if (std::fabs(a) < 1e-12) return 0.0;
+  const double cxx = xx - sx * sx / a, cyy = yy - sy * sy / a, cxy = xy - sx * sy / a;
+  return 0.5 * std::atan2(2 * cxy, cxx - cyy);
+}
+
+}  // namespace
+
+double rowSpacing(double r, double step) {
+  // Staggered rows (each row's plunges between the last row's): the scallops
+  // of neighbouring rows interleave; the closest they come is either a plunge
+  // opposite a gap or a quarter step from both.
+  const double h = std::min(step, 2 * r);
+  return std::min(r + std::sqrt(r * r - 0.25 * h * h), 2 * std::sqrt(r * r - h * h / 16));
+}
+
+std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double wallStep, double rowSpacing) {
+  std::vector<GrowthPath> out;
+  if (centres.empty() || !(step > 0) || !(rowSpacing > 0)) return out;
+  // The contour: every loop of the centre region, at most wallStep apart
+  // along it, on every corner (a corner's plunge reaches into the pocket's
+  // corner; none between would).
+  for (const Loop& l : centres) {
+    const size_t m = l.size();
+    std::vector<size_t> corners;
+    for (size_t i = 0; i < m; ++i) {
+      const Vec2 a = l[(i + m - 1) % m], b = l[i], c = l[(i + 1) % m];
+      const double n1 = dist(a, b), n2 = dist(b, c);
+      if (n1 > 0 && n2 > 0 && dot(b - a, c - b) < std::cos(M_PI / 9) * n1 * n2) corners.push_back(i);
+    }
+    if (corners.empty()) corners.push_back(0);
+    GrowthPath path{{}, true};
+    for (size_t k = 0; k < corners.size(); ++k) {
+      // From this corner up to the next one, evenly.
+      const size_t from = corners[k], to = corners[(k + 1) % corners.size()];
+      const size_t span = (to + m - from) % m == 0 ? m : (to + m - from) % m;
+      double length = 0;
+      for (size_t s = 0; s < span; ++s) length += dist(l[(from + s) % m], l[(from + s + 1) % m]);
+      const int n = std::max(1, static_cast<int>(std::ceil(length / wallStep - 1e-9)));
+      double walked = 0;
+      int placed = 0;
+      for (size_t s = 0; s < span && placed < n; ++s) {
+        const Vec2 a = l[(from + s) % m], b = l[(from + s + 1) % m];
+        const double len = dist(a, b);
+        for (double next = length * placed / n; next <= walked + len && placed < n; next = length * ++placed / n)
+          path.at.push_back(len > 0 ? a + (b - a) * ((next - walked) / len) : a);
+        walked += len;
+      }
+    }
+    out.push_back(std::move(path));
+  }
+  // Rows along the long axis, evenly spaced at most rowSpacing apart between
+  // the contour's extremes, each piece inside the region `step` apart.
+  const double th = longAxis(centres), c = std::cos(th), s = std::sin(th);
+  auto toRow = [&](Vec2 p) { return Vec2{p.x * c + p.y * s, -p.x * s + p.y * c}; };
+  auto fromRow = [&](Vec2 p) { return Vec2{p.x * c - p.y * s, p.x * s + p.y * c}; };
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Loop& l : centres)
+    for (Vec2 p : l) {
+      lo = std::min(lo, toRow(p).y);
+      hi = std::max(hi, toRow(p).y);
+    }
+  const int gaps = static_cast<int>(std::ceil((hi - lo) / rowSpacing - 1e-9));
+  for (int k = 1; k < gaps; ++k) {
+    const double y = lo + (hi - lo) * k / gaps;
+    std::vector<double> xs;  // where the row crosses the region's loops
+    for (const Loop& l : centres)
+      for (size_t i = 0; i < l.size(); ++i) {
+        const Vec2 a = toRow(l[i]), b = toRow(l[(i + 1) % l.size()]);
+        if ((a.y <= y) != (b.y <= y)) xs.push_back(a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y));
+      }
+    std::sort(xs.begin(), xs.end());
+    for (size_t i = 0; i + 1 < xs.size(); i += 2) {
+      // On a lattice `step` apart, shifted half a step on every other row,
+      // from just inside one end to the other end.
+      const double shift = (k % 2) * 0.5 * step, a = xs[i], b = xs[i + 1];
+      GrowthPath path{{}, false};
+      path.at.push_back(fromRow({a, y}));
+      for (double x = (std::floor((a - shift) / step) + 1) * step + shift; x < b - 1e-6; x += step)
+        if (x > a + 1e-6) path.at.push_back(fromRow({x, y}));
+      path.at.push_back(fromRow({b, y}));
+      out.push_back(std::move(path));
+    }
+  }
+  return out;
+}
+
+namespace {
+
 class Grower {
  public:
   Grower(const PlanInput& in, const Region& region, const DepthSolver& depths, HeightField& stock,
@@ -228,7 +350,14 @@ class Grower {
     const double h = stock_.spacing();
     Targets targets(planned, cutter, stock_);
     for (const Plunge& p : planned) targets.update({p.x, p.y}, r, stock_);
-    const Polygons centres = poly::offset(allowedRegion(region_, in_.radialAllowance), -(r + 1e-3));
+    // Material in the wall band is the walls' stock (kept within max_wall_stock
+    // by the contour's spacing), not a target: chasing the scallops the planned
+    // disks would have left elsewhere costs plunges and leaves no less stock.
+    if (in_.maxWallStock > 0) {
+      const double band = in_.radialAllowance + 0.9 * in_.maxWallStock;
+      targets.forget([&](Vec2 q) { return region_.wallDistance(q, band + 1.0) < band; });
+    }
+    const Polygons centres = poly::offset(allowedRegion(region_, in_.radialAllowance), -(r + kCentreMargin));
     // Along a ring, plunges a chord of the band apart: the next ring's offset
     // follows the scallops they leave.
     const double depthIn = r - 0.98 * e;
@@ -238,6 +367,7 @@ class Grower {
     std::vector<bool> triedStart(planned.size(), false);
     Vec2 at = order_.empty() ? (in_.start ? *in_.start : region_.loops()[0].front())
                              : Vec2{order_.back().x, order_.back().y};
+    growAlongPaths(tool, cutter, centres, targets, minGain, at);
     int stalls = 0;  // rounds that cut no target point (a guard: each round should)
     while (targets.left() > 0 && stalls < 3) {
       progress_.tick();
@@ -280,6 +410,195 @@ class Grower {
     finishSlivers(tool, cutter, planned, targets);
   }
 
+  // Grows along the contour and rows (growthPaths): each path is entered next
+  // to cut material, nearest first, and walked while its plunges keep the
+  // limit; where nothing can be entered, a start. Leaves to the rings what the
+  // paths cannot reach.
+  void growAlongPaths(const Tool& tool, const Cutter& cutter, const Polygons& centres, Targets& targets,
+                      int minGain, Vec2& at) {
+    const double r = cutter.radius, e = std::min(engagementLimit(tool), 2 * r);
+    const double coreR = tool.centerCutting ? 0.0 : 0.5 * tool.coreDiameter;
+    const double h = stock_.spacing();
+    // A step a little under the band (the raster measures to a cell); rows as
+    // far apart as the scallops along them allow, a cell of overlap.
+    // A core is checked three quarters of a cell wider (a cell's centre may lie
+    // that far from a point it stands for), so steps keep that much inside.
+    const double coreMargin = 0.75 * h;
+    const double step = std::max(std::min(e - 0.25 * h, coreR > 0 ? r - coreR - coreMargin - 0.05 * h : e),
+                                 std::max(tool.minEngagement, 2 * h));
+    // Along the walls, plunges close enough that their scallops keep the wall
+    // stock limit (with a margin for the raster).
+    double wallStep = step;
+    const double scallop = 0.8 * in_.maxWallStock;
+    if (scallop > 0 && scallop < r) wallStep = std::min(step, 2 * std::sqrt(r * r - (r - scallop) * (r - scallop)));
+    const std::vector<GrowthPath> paths = growthPaths(centres, step, wallStep, rowSpacing(r, step) - h);
+    enum class Verdict { Skip, Blocked, Solid, Thin, Ok };
+    struct Pos {
+      Vec2 c;
+      size_t path, index;
+      bool open = true;
+      // What a plunge here would meet, measured until a plunge lands nearby.
+      bool known = false, skip = false, solid = false, coreClear = true;
+      double engagement = 0.0;
+      std::optional<double> z;
+      bool zKnown = false;
+    };
+    std::vector<Pos> pos;
+    std::vector<size_t> first;  // each path's first position in pos
+    for (size_t k = 0; k < paths.size(); ++k) {
+      first.push_back(pos.size());
+      for (size_t i = 0; i < paths[k].at.size(); ++i) pos.push_back({paths[k].at[i], k, i, true, false, false, false, true, 0.0, std::nullopt, false});
+    }
+    if (pos.empty()) return;
+    // Positions by cell, to forget the verdicts a new plunge may change.
+    const double cell = 2 * r + e + 2 * h;
+    std::unordered_map<long long, std::vector<size_t>> near;
+    auto cellKey = [&](long i, long j) {
+      return static_cast<long long>((static_cast<unsigned long long>(i) << 32) ^
+                                    (static_cast<unsigned long long>(j) & 0xffffffffULL));
+    };
+    for (size_t k = 0; k < pos.size(); ++k)
+      near[cellKey(static_cast<long>(std::floor(pos[k].c.x / cell)), static_cast<long>(std::floor(pos[k].c.y / cell)))]
+          .push_back(k);
+    auto zOf = [&](Pos& p) {
+      if (!p.zKnown) {
+        p.zKnown = true;
+        if (region_.diskFits(p.c, r + in_.radialAllowance)) p.z = stopAt(p.c, tool);
+      }
+      return p.z;
+    };
+    // The raster measures to about a cell either way. A plunge entered
+    // anywhere must measure a quarter cell under the band; one a step on from
+    // the plunge before it on its path, no deeper, is within the band by
+    // construction (its crescent), and the measure only guards against the
+    // unforeseen, within the tolerance motion.hpp counts over-engagement with.
+    const double entrySlack = -0.25 * h, stepSlack = 1.0 * h;
+    auto judge = [&](size_t k, double slack) {
+      Pos& p = pos[k];
+      if (!p.known) {
+        p.known = true;
+        if (targets.open(p.c, r) < minGain || !zOf(p)) {
+          p.skip = true;
+        } else if (targets.gain(p.c, cutter, *p.z, stock_) < minGain) {
+          targets.defer(p.c, cutter, *p.z, stock_);
+          p.skip = true;
+        } else {
+          const HeightField::Contact m = stock_.contact(p.c, cutter, *p.z, coreR > 0 ? coreR + coreMargin : 0.0);
+          p.engagement = m.engagement;
+          p.solid = m.solid;
+          p.coreClear = m.coreClear;
+        }
+      }
+      if (p.skip) return Verdict::Skip;
+      if (!p.coreClear || p.engagement > e + slack) return p.solid ? Verdict::Solid : Verdict::Blocked;
+      return p.engagement < tool.minEngagement ? Verdict::Thin : Verdict::Ok;
+    };
+    auto cut = [&](size_t k, bool start) {
+      pos[k].open = false;
+      place(tool, cutter, pos[k].c, *pos[k].z, targets, start);
+      at = pos[k].c;
+      const long ci = static_cast<long>(std::floor(at.x / cell)), cj = static_cast<long>(std::floor(at.y / cell));
+      for (long j = cj - 1; j <= cj + 1; ++j)
+        for (long i = ci - 1; i <= ci + 1; ++i) {
+          auto it = near.find(cellKey(i, j));
+          if (it == near.end()) continue;
+          for (size_t q : it->second)
+            if (pos[q].open && !pos[q].skip) pos[q].known = false;
+        }
+    };
+    // The next position along a path (dir +1 or -1), or none.
+    auto along = [&](size_t k, int dir) -> std::optional<size_t> {
+      const GrowthPath& path = paths[pos[k].path];
+      const long n = static_cast<long>(path.at.size()), i = static_cast<long>(pos[k].index) + dir;
+      if (!path.closed && (i < 0 || i >= n)) return std::nullopt;
+      return first[pos[k].path] + static_cast<size_t>((i + n) % n);
+    };
+    // From a plunge just made, on along its path while the plunges keep the
+    // limit; a thin plunge only where the next one needs it.
+    auto walkOn = [&](size_t k) {
+      std::optional<size_t> ahead = along(k, +1);
+      const int dir = ahead && pos[*ahead].open ? +1 : -1;
+      size_t last = k;
+      for (std::optional<size_t> q = along(k, dir); q && pos[*q].open; q = along(*q, dir)) {
+        progress_.tick();
+        zOf(pos[*q]);
+        const bool onStep = dist(pos[*q].c, pos[last].c) <= step + 1e-6 && pos[*q].z && *pos[*q].z >= *pos[last].z - 1e-9;
+        const Verdict v = judge(*q, onStep ? stepSlack : entrySlack);
+        if (v == Verdict::Skip) {
+          pos[*q].open = false;
+        } else if (v == Verdict::Ok) {
+          cut(*q, false);
+          last = *q;
+        } else if (v == Verdict::Thin) {
+          const std::optional<size_t> next = along(*q, dir);
+          if (next && pos[*next].open && judge(*next, entrySlack) == Verdict::Ok) {
+            pos[*q].open = false;  // the next one cuts wider without it
+          } else {
+            cut(*q, false);
+            last = *q;
+          }
+        } else {
+          break;
+        }
+      }
+    };
+    std::vector<size_t> open(pos.size());
+    for (size_t k = 0; k < pos.size(); ++k) open[k] = k;
+    std::vector<std::pair<double, size_t>> order;
+    while (targets.left() > 0) {
+      progress_.tick();
+      // Nearest first (squared distances; ties by index, so deterministic).
+      open.erase(std::remove_if(open.begin(), open.end(), [&](size_t k) { return !pos[k].open; }), open.end());
+      if (open.empty()) break;
+      order.clear();
+      for (size_t k : open) {
+        const Vec2 d = pos[k].c - at;
+        order.push_back({d.x * d.x + d.y * d.y, k});
+      }
+      std::sort(order.begin(), order.end());
+      std::optional<size_t> entry, thin, start;
+      for (const auto& [unused, k] : order) {
+        const Verdict v = judge(k, entrySlack);
+        if (v == Verdict::Skip) {
+          pos[k].open = false;
+        } else if (v == Verdict::Ok) {
+          entry = k;
+          break;
+        } else if (v == Verdict::Thin && !thin) {
+          thin = k;
+        } else if (v == Verdict::Solid && !start && canStart(tool, pos[k].c)) {
+          start = k;
+        }
+      }
+      if (!entry) entry = thin;
+      if (entry) {
+        cut(*entry, false);
+      } else if (start) {
+        drillStart(tool, pos[*start].c);
+        cut(*start, true);
+      } else {
+        break;
+      }
+      walkOn(entry ? *entry : *start);
+    }
+  }
+
+  // Can the tool start at c: a plunge into solid (centre-cutting) or onto a
+  // hole its start-hole tool can drill there.
+  bool canStart(const Tool& tool, Vec2 c) const {
+    if (tool.centerCutting) return true;
+    const Tool& drill = startHoleTool(in_.tools, tool);
+    return stopAt(c, drill) && region_.diskFits(c, 0.5 * drill.diameter + in_.radialAllowance);
+  }
+  void drillStart(const Tool& tool, Vec2 c) {
+    if (tool.centerCutting) return;
+    const Tool& drill = startHoleTool(in_.tools, tool);
+    Plunge hole = plungeOf(drill, c, *stopAt(c, drill));
+    hole.startHole = hole.start = true;
+    holes_.push_back(hole);
+    stock_.cut(c, cutterOf(drill), hole.z);
+  }
+
   // Pieces of the tool's planned cut narrower than the stock's cells, which the
   // raster cannot see, measured exactly (polygons): each is cut by the planned
   // plunge that covers most of it, where that keeps the limits.
@@ -289,7 +608,10 @@ class Grower {
     for (const Plunge& p : planned) want.push_back({{p.x, p.y}, cutter.radius});
     const double coreR = tool.centerCutting ? 0.0 : 0.5 * tool.coreDiameter;
     const double e = std::min(engagementLimit(tool), 2 * cutter.radius) + 2 * stock_.spacing();
-    for (const Polygons& piece : poly::components(poly::subtract(poly::unionOfDisks(want), cleared_))) {
+    Polygons left = poly::subtract(poly::unionOfDisks(want), cleared_);
+    if (in_.maxWallStock > 0)  // beyond the wall band, as the targets
+      left = poly::intersect(left, poly::offset(allowedRegion(region_, in_.radialAllowance), -0.9 * in_.maxWallStock));
+    for (const Polygons& piece : poly::components(left)) {
       if (poly::area(piece) < 0.01) continue;
       int best = -1;
       size_t inside = 0;

@@ -133,6 +133,7 @@ HeightField::Contact HeightField::contact(Vec2 c, const Cutter& cutter, double z
     }
   if (out.materialCells == 0) return out;
   if (freeCells == 0) {
+    out.solid = true;
     out.engagement = 2 * r;
     return out;
   }

@@ -38,25 +38,41 @@ def plan(path, limit, tmp):
     if r.returncode == 2:  # refused before planning (limits: max_plunges)
         return None
     r.check_returncode()
-    return json.load(open(out))["stats"]
+    result = json.load(open(out))
+    stats = result["stats"]
+    plunges = result["plunges"]
+    stats["lead_out_share"] = sum("lead_out" in p for p in plunges) / max(1, len(plunges))
+    stats["travel_per_plunge"] = stats["travel_length"] / max(1, len(plunges) - 1)
+    stats["largest"] = max(t["diameter"] for t in data["tools"])
+    return stats
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("shapes", nargs="*", default=list(SHAPES))
     args = ap.parse_args()
-    print("| shape | plunges: unlimited / 0.5 D / 0.25 D | minutes: unlimited / 0.5 D / 0.25 D | "
-          "minutes at safe height (unlimited) | saved by stock-aware heights |")
-    print("|---|---|---|---|---|")
+    print("| shape | plunges: unlimited / 0.5 D / 0.25 D | row bound 0.5 D / 0.25 D | plunges / bound | "
+          "travel per plunge (mm) | lead-outs | minutes: unlimited / 0.5 D / 0.25 D | planning (s) | "
+          "saved by stock-aware heights (unlimited) |")
+    print("|---|---|---|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
         for name in args.shapes:
             if not os.path.exists(SHAPES[name]):
                 continue
             runs = [plan(SHAPES[name], limit, tmp) for limit in (None, 0.5, 0.25)]
             free = runs[0]
-            print("| %s | %s | %s | %.1f | %.1f min (%.0f %%) |" % (
+            # Rows 0.87 D apart, plunges e apart along them (the row pattern), or
+            # the unlimited plan where that is more.
+            bound = [max(free["plunge_count"], free["region_area"] / (0.87 * free["largest"] * f * free["largest"]))
+                     for f in (0.5, 0.25)]
+            print("| %s | %s | %s | %s | %s | %s | %s | %s | %.1f min (%.0f %%) |" % (
                 name, " / ".join(str(s["plunge_count"]) if s else "refused" for s in runs),
-                " / ".join("%.1f" % s["estimated_minutes"] if s else "-" for s in runs), free["minutes_at_safe_height"],
+                " / ".join("%.0f" % b for b in bound),
+                " / ".join("%.2f" % (s["plunge_count"] / b) if s else "-" for s, b in zip(runs[1:], bound)),
+                " / ".join("%.1f" % s["travel_per_plunge"] if s else "-" for s in runs),
+                " / ".join("%.0f %%" % (100 * s["lead_out_share"]) if s else "-" for s in runs),
+                " / ".join("%.1f" % s["estimated_minutes"] if s else "-" for s in runs),
+                " / ".join("%.1f" % s["planning_seconds"] if s else "-" for s in runs),
                 free["minutes_at_safe_height"] - free["estimated_minutes"],
                 100 * (1 - free["estimated_minutes"] / free["minutes_at_safe_height"])), flush=True)
 

@@ -29,6 +29,21 @@ double engagementLimit(const Tool& tool);
 // job has none.
 const Tool& startHoleTool(const std::vector<Tool>& tools, const Tool& tool);
 
+// Positions a limited tool grows its cut along (thesis: none; what plunge-mill
+// makers prescribe): the contour of its centre region (every loop, walls and
+// islands) at most `wallStep` apart, and rows along the region's long axis, at
+// most `rowSpacing` apart, their positions at most `step` apart. A plunge next
+// to the last one on its path cuts a crescent no thicker than the step, so a
+// limit e costs about area / (rowSpacing x e) plunges, however wide the rows.
+struct GrowthPath {
+  std::vector<Vec2> at;
+  bool closed = false;  // a loop of the contour
+};
+std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double wallStep, double rowSpacing);
+// How far apart rows of plunges of radius r, `step` apart along each row and
+// staggered by half a step, may run and still cut everything between them.
+double rowSpacing(double r, double step);
+
 // The plan's plunges (tools largest first, each tool's in tour order) rebuilt so
 // that every tool keeps its engagement limit and core over removed material.
 // Tools without limits keep their plunges and order. Start holes come first.

@@ -36,6 +36,7 @@ class HeightField {
     double engagement = 0.0;  // widest radial band of material (mm); the diameter into solid
     double deepest = 0.0;     // thickest material above the cutting surface (mm)
     int materialCells = 0;    // cells with material thicker than the skin
+    bool solid = false;       // material everywhere under the disk: a plunge into solid
     bool coreClear = true;    // every cell within the core radius is cut to z + skin
   };
   // What a plunge at c to tip height z would meet: material is stock more than

@@ -26,14 +26,15 @@ constexpr size_t kMaxVertices = 1000000;
 constexpr size_t kPlanningVertices = 4000;
 constexpr double kMaxBoundaryTolerance = 0.05;
 
-// Growing a cut within an engagement limit (engagement.hpp) costs about this
-// many times more per plunge than packing.
-constexpr double kGrowthCost = 20.0;
+// A plunge grown within an engagement limit (engagement.hpp) costs about this
+// many packed plunges of planning: the 600 x 400 mm benchmark at 0.25 D grows
+// about 7,000 plunges in 15 s; packed, its estimate of 11,600 takes 3.8 s.
+constexpr double kGrowthCost = 6.0;
 
 // The planner's work in plunges: the pocket's area over the smallest tool's
 // disk (packing and covering place fewer, since larger tools go first); with
-// an engagement limit e on the largest limited tool (radius r), at least
-// kGrowthCost x area / (r e) (its growth rings overlap).
+// an engagement limit e on the largest limited tool (diameter D), at least
+// kGrowthCost x its row bound, area / (0.87 D e).
 double estimatedPlunges(const PlanInput& in);
 
 // The region a plan is made on: the given loops, or with more than
