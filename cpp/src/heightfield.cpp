@@ -67,6 +67,20 @@ int HeightField::materialCells(Vec2 c, const Cutter& cutter, double z, double ma
   return n;
 }
 
+double HeightField::bite(Vec2 from, Vec2 c, const Cutter& cutter, double z, double margin) const {
+  double deepest = -1.0;
+  const double r = cutter.radius + margin;
+  const long i0 = static_cast<long>(std::floor((c.x - r - lo_.x) / h_));
+  const long j0 = static_cast<long>(std::floor((c.y - r - lo_.y) / h_));
+  const long m = static_cast<long>(std::ceil(2 * r / h_)) + 1;
+  for (long j = j0; j <= j0 + m; ++j)
+    for (long i = i0; i <= i0 + m; ++i)
+      if (const double rho = dist(centre(i, j), c);
+          rho <= r && at(i, j) > z + cutterProfile(cutter, rho) + kEngagementSkin)
+        deepest = std::max(deepest, dist(centre(i, j), from) - cutter.radius);
+  return deepest;
+}
+
 namespace {
 
 // Squared Euclidean distance transform of one row or column (Felzenszwalb and

@@ -332,6 +332,9 @@ std::string planToJson(const Plan& plan) {
                   {"start_holes", s.startHoles},
                   {"over_engaged", s.overEngaged},
                   {"thin_cuts", s.thinCuts},
+                  {"lead_outs", s.leadOuts},
+                  {"no_lead_out_material", s.noLeadOutMaterial},
+                  {"no_lead_out_walls", s.noLeadOutWalls},
                   {"levels", s.levels},
                   {"minutes_at_safe_height", s.minutesAtSafeHeight},
                   {"boundary_tolerance", s.boundaryTolerance}};

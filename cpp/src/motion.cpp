@@ -186,44 +186,67 @@ std::vector<Plunge> splitIntoLevels(const PlanInput& in, const std::vector<Plung
 
 namespace {
 
-// The lead-out end of a plunge just made (stock already cut by it), or none:
-// of the 16 directions that neither cut material nor gouge, the one ending
-// farthest from the walls (the first such in angle order). Tried from the most
-// room down, cheap tests first, so the exact stock test runs on few of them.
+// Why a plunge has no lead-out.
+enum class NoLeadOut { None, Material, Walls };
+
+// The lead-out end of a plunge just made (stock already cut by it), or none
+// and why: of the 16 directions (and the one back to the plunge before) that
+// do not gouge, the one ending farthest from the walls that cuts no material,
+// else the first that only grazes material at its flanks, biting at most half
+// the lead-out deeper than the plunge's own hole (a move back along a row
+// grazes the waist between two holes). Tried from the most room down, cheap
+// tests first, so the exact stock test runs on few of them.
 std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const DepthSolver& depths,
                               const HeightField& stock, const Touched& touched, const Plunge& p,
-                              const Cutter& cutter) {
+                              const Cutter& cutter, std::optional<Vec2> back, NoLeadOut& why) {
   const Vec2 c{p.x, p.y};
   struct End {
     Vec2 at;
     double room;
   };
   std::vector<End> ends;
-  for (int d = 0; d < 16; ++d) {
-    const double a = 2 * M_PI * d / 16;
-    const Vec2 end = c + Vec2{std::cos(a), std::sin(a)} * in.leadOut;
+  auto add = [&](Vec2 d) {
+    const Vec2 end = c + d * (in.leadOut / norm(d));
     ends.push_back({end, region.wallDistance(end, 4 * cutter.radius)});
-  }
+  };
+  if (back && dist(*back, c) > 1e-6) add(*back - c);
+  for (int d = 0; d < 16; ++d) add({std::cos(2 * M_PI * d / 16), std::sin(2 * M_PI * d / 16)});
   std::stable_sort(ends.begin(), ends.end(), [](const End& a, const End& b) { return a.room > b.room + 1e-9; });
   const int samples = std::max(2, static_cast<int>(std::ceil(in.leadOut / (0.25 * cutter.radius))));
   auto noGouge = [&](Vec2 end) {
     for (int s = 1; s <= samples; ++s) {
       const Vec2 q = c + (end - c) * (static_cast<double>(s) / samples);
-      // Walls and islands, and the floor under the moving tool.
+      // Walls and islands (never nearer than the allowance), and the floor under the moving tool.
       if (!region.diskFits(q, cutter.radius + in.radialAllowance) ||
           depths.plungeHeight(q, cutter, in.floorAllowance, in.radialAllowance) > p.z + 1e-6)
         return false;
     }
     return true;
   };
-  for (const End& e : ends) {
-    // Into uncut material (cells touching the moved disk: the crescent it adds
-    // is narrower than a cell), then the exact test of the stock left.
-    if (stock.materialCells(e.at, cutter, p.z, 0.71 * stock.spacing()) > 0 || !noGouge(e.at) ||
-        touched.highestAlong(c, e.at, cutter.radius) > p.z + cutterProfile(cutter, cutter.radius) + kEngagementSkin)
+  const double margin = 0.71 * stock.spacing();
+  std::vector<signed char> fits(ends.size(), -1);  // noGouge, computed once when needed
+  auto fitsAt = [&](size_t k) {
+    if (fits[k] < 0) fits[k] = noGouge(ends[k].at) ? 1 : 0;
+    return fits[k] == 1;
+  };
+  for (size_t k = 0; k < ends.size(); ++k) {
+    // Into no material (cells touching the moved disk: the crescent it adds is
+    // narrower than a cell), then the exact bound of the stock left.
+    const Vec2 end = ends[k].at;
+    if (stock.materialCells(end, cutter, p.z, margin) > 0 ||
+        touched.highestAlong(c, end, cutter.radius) > p.z + cutterProfile(cutter, cutter.radius) + kEngagementSkin)
       continue;
-    return e.at;
+    if (fitsAt(k)) return end;
   }
+  for (size_t k = 0; k < ends.size(); ++k)
+    if (stock.bite(c, ends[k].at, cutter, p.z) <= 0.5 * in.leadOut && fitsAt(k)) return ends[k].at;
+  bool room = false;
+  for (size_t k = 0; k < ends.size() && !room; ++k) room = fitsAt(k);
+  if (!room) {
+    why = NoLeadOut::Walls;
+    return std::nullopt;
+  }
+  why = NoLeadOut::Material;
   return std::nullopt;
 }
 
@@ -237,6 +260,7 @@ void planMotion(const PlanInput& in, const Region& region, const DepthSolver& de
   const double tol = 1.5 * stock.spacing();
   int tooDeep = 0, coreOnMaterial = 0;
   plan.stats.overEngaged = plan.stats.thinCuts = 0;
+  plan.stats.leadOuts = plan.stats.noLeadOutMaterial = plan.stats.noLeadOutWalls = 0;
   plan.stats.travelLength = 0.0;
   for (size_t i = 0; i < ps.size(); ++i) {
     Plunge& p = ps[i];
@@ -267,7 +291,16 @@ void planMotion(const PlanInput& in, const Region& region, const DepthSolver& de
     stock.cut(c, cutter, p.z);
     touched.add(c, r, p.z + cornerHeight(t));
     p.leadOut.reset();
-    if (in.leadOut > 0.0) p.leadOut = leadOutOf(in, region, depths, stock, touched, p, cutter);
+    if (in.leadOut > 0.0) {
+      // Back toward the plunge before, where the same tool just cut.
+      std::optional<Vec2> back;
+      if (i > 0 && ps[i - 1].toolId == p.toolId) back = Vec2{ps[i - 1].x, ps[i - 1].y};
+      NoLeadOut why = NoLeadOut::None;
+      p.leadOut = leadOutOf(in, region, depths, stock, touched, p, cutter, back, why);
+      if (why == NoLeadOut::Material) ++plan.stats.noLeadOutMaterial;
+      if (why == NoLeadOut::Walls) ++plan.stats.noLeadOutWalls;
+      if (p.leadOut) ++plan.stats.leadOuts;
+    }
     if (p.leadOut) touched.add(*p.leadOut, r, p.z + cornerHeight(t));
     p.retractZ = in.safeZ;
   }
@@ -283,6 +316,14 @@ void planMotion(const PlanInput& in, const Region& region, const DepthSolver& de
        " walls leave no wider cut): the tool may deflect there");
   warn(coreOnMaterial, " plunges of a non-centre-cutting tool have material under the core (uneven floor depths)");
   warn(tooDeep, " plunges cut deeper than their tool's flute length");
+  if (in.leadOut > 0.0) {
+    warn(plan.stats.noLeadOutMaterial,
+         " plunges retract without a lead-out: material all round would be cut deeper than half the lead-out"
+         " (plunges into solid, or wrapped by uncut stock)");
+    warn(plan.stats.noLeadOutWalls,
+         " plunges retract without a lead-out: no direction keeps the allowance to the walls and islands"
+         " (or the floor rises)");
+  }
   plan.stats.estimatedMinutes = motionMinutes(plan, in.tools, in, false);
   plan.stats.minutesAtSafeHeight = motionMinutes(plan, in.tools, in, true);
 }

@@ -209,10 +209,16 @@ class Check:
             x = a[0] + (b[0] - a[0]) * k / steps
             y = a[1] + (b[1] - a[1]) * k / steps
             self.no_gouge(tool, x, y, z, "lead-out")
+        # Grazing at the flanks is allowed: no material under the moved tool
+        # farther than half the lead-out beyond the plunge's own hole (the two
+        # rasters' cells apart).
         (sy, sx), (X, Y) = self.window(b[0], b[1], r)
         rho = np.hypot(X - b[0], Y - b[1])
-        if ((rho <= r) & (self.z[sy, sx] - (z + profile(tool, rho)) > SKIN)).any():
-            self.report["lead_out_into_material"].append((a, b, z))
+        material = (rho <= r) & (self.z[sy, sx] - (z + profile(tool, rho)) > SKIN)
+        if material.any():
+            bite = float((np.hypot(X - a[0], Y - a[1])[material] - r).max())
+            if bite > 0.5 * math.dist(a, b) + 2 * self.h:
+                self.report["lead_out_into_material"].append((a, b, z, round(bite, 3)))
         for k in range(1, steps + 1):
             self.cut(tool, a[0] + (b[0] - a[0]) * k / steps, a[1] + (b[1] - a[1]) * k / steps, z)
 

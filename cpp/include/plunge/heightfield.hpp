@@ -47,6 +47,11 @@ class HeightField {
   // Cells of material a cutter at c with its tip at z meets (beyond the skin),
   // counting cells whose centre lies up to `margin` beyond its radius.
   int materialCells(Vec2 c, const Cutter& cutter, double z, double margin = 0.0) const;
+  // How deep a cutter moved sideways at tip height z from `from` to `c` bites
+  // into the stock: the largest distance beyond its radius from `from` of a
+  // material cell under it at c (cells up to `margin` beyond its radius
+  // counted); negative when it meets no material.
+  double bite(Vec2 from, Vec2 c, const Cutter& cutter, double z, double margin = 0.0) const;
 
   // Centre of the cell containing p (the point whose stock the cell holds).
   Vec2 cellCentre(Vec2 p) const {
