@@ -210,6 +210,44 @@ double longAxis(const Polygons& region) {
   return 0.5 * std::atan2(2 * cxy, cxx - cyy);
 }
 
+// Rows at angle th across the region, evenly spaced at most rowSpacing apart
+// between its extremes, each piece inside the region `step` apart.
+std::vector<GrowthPath> rowsAt(const Polygons& centres, double th, double step, double rowSpacing) {
+  std::vector<GrowthPath> out;
+  const double c = std::cos(th), s = std::sin(th);
+  auto toRow = [&](Vec2 p) { return Vec2{p.x * c + p.y * s, -p.x * s + p.y * c}; };
+  auto fromRow = [&](Vec2 p) { return Vec2{p.x * c - p.y * s, p.x * s + p.y * c}; };
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const Loop& l : centres)
+    for (Vec2 p : l) {
+      lo = std::min(lo, toRow(p).y);
+      hi = std::max(hi, toRow(p).y);
+    }
+  const int gaps = static_cast<int>(std::ceil((hi - lo) / rowSpacing - 1e-9));
+  for (int k = 1; k < gaps; ++k) {
+    const double y = lo + (hi - lo) * k / gaps;
+    std::vector<double> xs;  // where the row crosses the region's loops
+    for (const Loop& l : centres)
+      for (size_t i = 0; i < l.size(); ++i) {
+        const Vec2 a = toRow(l[i]), b = toRow(l[(i + 1) % l.size()]);
+        if ((a.y <= y) != (b.y <= y)) xs.push_back(a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y));
+      }
+    std::sort(xs.begin(), xs.end());
+    for (size_t i = 0; i + 1 < xs.size(); i += 2) {
+      // On a lattice `step` apart, shifted half a step on every other row,
+      // from just inside one end to the other end.
+      const double shift = (k % 2) * 0.5 * step, a = xs[i], b = xs[i + 1];
+      GrowthPath path{{}, false};
+      path.at.push_back(fromRow({a, y}));
+      for (double x = (std::floor((a - shift) / step) + 1) * step + shift; x < b - 1e-6; x += step)
+        if (x > a + 1e-6) path.at.push_back(fromRow({x, y}));
+      path.at.push_back(fromRow({b, y}));
+      out.push_back(std::move(path));
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 double rowSpacing(double r, double step) {
@@ -255,41 +293,23 @@ std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double
     }
     out.push_back(std::move(path));
   }
-  // Rows along the long axis, evenly spaced at most rowSpacing apart between
-  // the contour's extremes, each piece inside the region `step` apart.
-  const double th = longAxis(centres), c = std::cos(th), s = std::sin(th);
-  auto toRow = [&](Vec2 p) { return Vec2{p.x * c + p.y * s, -p.x * s + p.y * c}; };
-  auto fromRow = [&](Vec2 p) { return Vec2{p.x * c - p.y * s, p.x * s + p.y * c}; };
-  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  // Rows along the long axis; parallel to the longest wall instead where that
+  // is within 10 degrees of it (a machinist's rows run along the walls).
+  double th = longAxis(centres), longest = 0;
   for (const Loop& l : centres)
-    for (Vec2 p : l) {
-      lo = std::min(lo, toRow(p).y);
-      hi = std::max(hi, toRow(p).y);
-    }
-  const int gaps = static_cast<int>(std::ceil((hi - lo) / rowSpacing - 1e-9));
-  for (int k = 1; k < gaps; ++k) {
-    const double y = lo + (hi - lo) * k / gaps;
-    std::vector<double> xs;  // where the row crosses the region's loops
-    for (const Loop& l : centres)
-      for (size_t i = 0; i < l.size(); ++i) {
-        const Vec2 a = toRow(l[i]), b = toRow(l[(i + 1) % l.size()]);
-        if ((a.y <= y) != (b.y <= y)) xs.push_back(a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y));
+    for (size_t i = 0; i < l.size(); ++i) {
+      const Vec2 d = l[(i + 1) % l.size()] - l[i];
+      const double a = std::atan2(d.y, d.x);
+      if (norm(d) > longest && std::fabs(std::remainder(a - longAxis(centres), M_PI)) < M_PI / 18) {
+        longest = norm(d);
+        th = a;
       }
-    std::sort(xs.begin(), xs.end());
-    for (size_t i = 0; i + 1 < xs.size(); i += 2) {
-      // On a lattice `step` apart, shifted half a step on every other row,
-      // from just inside one end to the other end.
-      const double shift = (k % 2) * 0.5 * step, a = xs[i], b = xs[i + 1];
-      GrowthPath path{{}, false};
-      path.at.push_back(fromRow({a, y}));
-      for (double x = (std::floor((a - shift) / step) + 1) * step + shift; x < b - 1e-6; x += step)
-        if (x > a + 1e-6) path.at.push_back(fromRow({x, y}));
-      path.at.push_back(fromRow({b, y}));
-      out.push_back(std::move(path));
     }
-  }
+  std::vector<GrowthPath> best = rowsAt(centres, th, step, rowSpacing);
+  for (GrowthPath& p : best) out.push_back(std::move(p));
   return out;
 }
+
 
 namespace {
 

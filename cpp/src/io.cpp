@@ -469,7 +469,7 @@ class SvgPicture {
  private:
   void frame() {
     const double w = hi_.x - lo_.x, h = hi_.y - lo_.y, margin = 0.04 * size_;
-    legendH_ = 0.05 * size_ * (3 + plan_.stats.perTool.size() + (plan_.stockMap ? 1 : 0));
+    legendH_ = 0.05 * size_ * (5 + plan_.stats.perTool.size() + (plan_.stockMap ? 1 : 0));
     const double vx = lo_.x - margin, vy = -hi_.y - margin - legendH_, vw = w + 2 * margin,
                  vh = h + 2 * margin + legendH_;
     const double pxW = 1200.0, pxH = pxW * vh / vw;
@@ -501,12 +501,34 @@ class SvgPicture {
       s_ << "<circle cx=\"" << p.x << "\" cy=\"" << -p.y << "\" r=\"" << p.diameter / 2 << "\" fill=\"" << c
          << "\" fill-opacity=\"" << fillOpacity << "\" stroke=\"" << c << "\" stroke-width=\"" << sw_ << "\"/>\n";
     }
+    // Each tool's path from faint (its first plunges) to strong (its last):
+    // the order a limited tool grows its cut in, at a glance.
     for (const ToolCount& t : plan_.stats.perTool) {
-      s_ << "<polyline fill=\"none\" stroke=\"" << kPathPalette[colour_[t.toolId] % 8] << "\" stroke-width=\""
-         << 1.5 * sw_ << "\" stroke-opacity=\"0.9\" points=\"";
+      std::vector<const Plunge*> mine;
       for (const Plunge& p : plan_.plunges)
-        if (p.toolId == t.toolId) s_ << p.x << "," << -p.y << " ";
-      s_ << "\"/>\n";
+        if (p.toolId == t.toolId) mine.push_back(&p);
+      const int parts = 8;
+      for (int k = 0; k < parts && mine.size() > 1; ++k) {
+        const size_t from = (mine.size() - 1) * k / parts, to = (mine.size() - 1) * (k + 1) / parts;
+        if (to <= from) continue;
+        s_ << "<polyline fill=\"none\" stroke=\"" << kPathPalette[colour_[t.toolId] % 8] << "\" stroke-width=\""
+           << 1.5 * sw_ << "\" stroke-opacity=\"" << 0.25 + 0.75 * (k + 1) / parts << "\" points=\"";
+        for (size_t i = from; i <= to; ++i) s_ << mine[i]->x << "," << -mine[i]->y << " ";
+        s_ << "\"/>\n";
+      }
+    }
+    // Start holes (black rings), starts into solid or onto a hole (black dots)
+    // and lead-outs (black ticks from the plunge's centre).
+    for (const Plunge& p : plan_.plunges) {
+      if (p.startHole) {
+        s_ << "<circle cx=\"" << p.x << "\" cy=\"" << -p.y << "\" r=\"" << p.diameter / 2
+           << "\" fill=\"none\" stroke=\"#000\" stroke-width=\"" << 3 * sw_ << "\"/>\n";
+      } else if (p.start) {
+        s_ << "<circle cx=\"" << p.x << "\" cy=\"" << -p.y << "\" r=\"" << 0.15 * p.diameter << "\" fill=\"#000\"/>\n";
+      }
+      if (p.leadOut)
+        s_ << "<line x1=\"" << p.x << "\" y1=\"" << -p.y << "\" x2=\"" << p.leadOut->x << "\" y2=\"" << -p.leadOut->y
+           << "\" stroke=\"#000\" stroke-width=\"" << 2 * sw_ << "\"/>\n";
     }
   }
 
@@ -567,6 +589,14 @@ class SvgPicture {
            "T" + std::to_string(t.toolId) + " D" + number(t.diameter) + ": " + std::to_string(t.count) + " plunges");
       y += 1.4 * fs_;
     }
+    int starts = 0;
+    for (const Plunge& p : plan_.plunges) starts += p.start && !p.startHole;
+    text(lo_.x, y + fs_,
+         "black: " + std::to_string(starts) + " starts (dots), " + std::to_string(plan_.stats.startHoles) +
+             " start holes (rings), " + std::to_string(plan_.stats.leadOuts) + " lead-outs (ticks)");
+    y += 1.4 * fs_;
+    text(lo_.x, y + fs_, "each tool's path: faint (first plunges) to strong (last)");
+    y += 1.4 * fs_;
     if (plan_.stockMap) {
       for (int k = 0; k <= 4; ++k) {
         swatch(lo_.x + k * fs_, y, stockColour(0.5 * k * stockScale_, stockScale_));
