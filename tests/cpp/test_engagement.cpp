@@ -3,6 +3,7 @@
 #include "plunge/engagement.hpp"
 #include "plunge/error.hpp"
 #include "plunge/heightfield.hpp"
+#include "plunge/polygon.hpp"
 #include "plunge/plan.hpp"
 #include "testutil.hpp"
 
@@ -90,4 +91,29 @@ TEST(Engagement, StartHolesNeedACentreCuttingToolAsWideAsTheCore) {
   cutter.coreDiameter = 10;
   EXPECT_THROW(startHoleTool({cutter, {8, 2, 100}}, cutter), Error);
   EXPECT_EQ(startHoleTool({cutter, {16, 3, 100}, {12, 2, 100}, {8, 4, 100}}, cutter).id, 2);
+}
+
+// The contour and rows a limited tool grows along cut everything its centres
+// reach: disks on every position cover the centre region grown by the radius
+// (scallops aside), with rows no closer than the row bound's 0.87 D.
+TEST(Engagement, GrowthPathsCoverWhatTheToolReaches) {
+  const double r = 10, step = 5;
+  const Polygons centres = poly::offset({{{0, 0}, {200, 0}, {200, 90}, {120, 90}, {120, 50}, {80, 50}, {80, 90},
+                                         {0, 90}}},
+                                        -r);
+  const std::vector<GrowthPath> paths = growthPaths(centres, step, step, rowSpacing(r, step));
+  std::vector<Circle> disks;
+  size_t rows = 0;
+  for (const GrowthPath& p : paths) {
+    rows += !p.closed;
+    for (size_t i = 0; i + 1 < p.at.size(); ++i) EXPECT_LE(dist(p.at[i], p.at[i + 1]), step + 1e-6);
+    for (Vec2 c : p.at) disks.push_back({c, r});
+  }
+  EXPECT_GT(rows, 0u);
+  EXPECT_GE(rowSpacing(r, step), 0.87 * 2 * r);
+  const Polygons reach = poly::offset(centres, r);
+  const double left = poly::area(poly::subtract(reach, poly::unionOfDisks(disks, 0.01)));
+  EXPECT_LT(left, 0.01 * poly::area(reach)) << left;
+  // Nothing far from the walls is left: only scallops within 1 mm of the reach's edge.
+  EXPECT_LT(poly::area(poly::subtract(poly::offset(reach, -1.0), poly::unionOfDisks(disks, 0.01))), 1.0);
 }

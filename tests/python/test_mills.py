@@ -141,3 +141,30 @@ def test_a_plunge_cutter_needs_a_centre_cutting_tool_for_its_start_holes(cli, tm
     run = subprocess.run([cli, "plan", str(src)], capture_output=True, text=True, timeout=60)
     assert run.returncode == 2
     assert "does not cut at its centre" in run.stderr and "at least 10 mm wide" in run.stderr
+
+
+SHAPES = os.path.join(os.path.dirname(__file__), "..", "data", "shapes")
+
+
+@pytest.mark.parametrize("shape", ["convex", "concave", "islands", "freeform", "neck"])
+def test_limited_plans_stay_near_the_row_bound_and_lead_out(cli, tmp_path, shape):
+    """A band limit e costs about area / (0.87 D e) plunges (rows 0.87 D apart,
+    a plunge every e along them): the plan stays within 1.3 times that (or of
+    the unlimited plan, where that is more), and nearly every plunge leads out."""
+    data = json.load(open(os.path.join(SHAPES, shape + ".json")))
+    free, _ = post(cli, data, tmp_path)
+    largest = max(t["diameter"] for t in data["tools"])
+    for kind, fraction in (("half", 0.5), ("quarter", 0.25)):
+        plan, _ = post(cli, mill(data, kind), tmp_path)
+        stats = plan["stats"]
+        bound = max(free["stats"]["plunge_count"], stats["region_area"] / (0.87 * largest * fraction * largest))
+        assert stats["plunge_count"] <= 1.3 * bound, (kind, stats["plunge_count"], bound)
+        plunges = plan["plunges"]
+        with_lead_out = sum("lead_out" in p for p in plunges)
+        assert with_lead_out == stats["lead_outs"]
+        assert with_lead_out >= 0.9 * len(plunges), (kind, with_lead_out, len(plunges))
+        # The others are counted by reason, and said.
+        missing = stats["no_lead_out_material"] + stats["no_lead_out_walls"]
+        assert missing == len(plunges) - with_lead_out
+        if missing:
+            assert any("without a lead-out" in w for w in plan["warnings"])
