@@ -213,14 +213,20 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
   for (int d = 0; d < 16; ++d) add({std::cos(2 * M_PI * d / 16), std::sin(2 * M_PI * d / 16)});
   std::stable_sort(ends.begin(), ends.end(), [](const End& a, const End& b) { return a.room > b.room + 1e-9; });
   const int samples = std::max(2, static_cast<int>(std::ceil(in.leadOut / (0.25 * cutter.radius))));
-  auto noGouge = [&](Vec2 end) {
-    for (int s = 1; s <= samples; ++s) {
-      const Vec2 q = c + (end - c) * (static_cast<double>(s) / samples);
-      // Walls and islands (never nearer than the allowance), and the floor under the moving tool.
-      if (!region.diskFits(q, cutter.radius + in.radialAllowance) ||
-          depths.plungeHeight(q, cutter, in.floorAllowance, in.radialAllowance) > p.z + 1e-6)
+  // Walls and islands (never nearer than the allowance), then the floor under
+  // the moving tool (a depth optimization per sample on sculptured floors).
+  auto wallsKept = [&](Vec2 end) {
+    for (int s = 1; s <= samples; ++s)
+      if (!region.diskFits(c + (end - c) * (static_cast<double>(s) / samples), cutter.radius + in.radialAllowance))
         return false;
-    }
+    return true;
+  };
+  auto noGouge = [&](Vec2 end) {
+    if (!wallsKept(end)) return false;
+    for (int s = 1; s <= samples; ++s)
+      if (depths.plungeHeight(c + (end - c) * (static_cast<double>(s) / samples), cutter, in.floorAllowance,
+                              in.radialAllowance) > p.z + 1e-6)
+        return false;
     return true;
   };
   const double margin = 0.71 * stock.spacing();
@@ -241,7 +247,7 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
   for (size_t k = 0; k < ends.size(); ++k)
     if (stock.bite(c, ends[k].at, cutter, p.z) <= 0.5 * in.leadOut && fitsAt(k)) return ends[k].at;
   bool room = false;
-  for (size_t k = 0; k < ends.size() && !room; ++k) room = fitsAt(k);
+  for (size_t k = 0; k < ends.size() && !room; ++k) room = fits[k] == 1 || wallsKept(ends[k].at);
   if (!room) {
     why = NoLeadOut::Walls;
     return std::nullopt;
@@ -318,11 +324,10 @@ void planMotion(const PlanInput& in, const Region& region, const DepthSolver& de
   warn(tooDeep, " plunges cut deeper than their tool's flute length");
   if (in.leadOut > 0.0) {
     warn(plan.stats.noLeadOutMaterial,
-         " plunges retract without a lead-out: material all round would be cut deeper than half the lead-out"
-         " (plunges into solid, or wrapped by uncut stock)");
+         " plunges retract without a lead-out: material all round would be cut deeper than half the lead-out, or"
+         " the floor rises (plunges into solid, wrapped by uncut stock, or in a hollow of a sculptured floor)");
     warn(plan.stats.noLeadOutWalls,
-         " plunges retract without a lead-out: no direction keeps the allowance to the walls and islands"
-         " (or the floor rises)");
+         " plunges retract without a lead-out: no direction keeps the allowance to the walls and islands");
   }
   plan.stats.estimatedMinutes = motionMinutes(plan, in.tools, in, false);
   plan.stats.minutesAtSafeHeight = motionMinutes(plan, in.tools, in, true);

@@ -141,8 +141,8 @@ struct PlanStats {
   int overEngaged = 0;          // plunges (not starts) cutting wider than their tool's max_engagement
   int thinCuts = 0;             // plunges cutting narrower than their tool's min_engagement
   int leadOuts = 0;             // plunges with a lead-out (motion.hpp)
-  int noLeadOutMaterial = 0;    // without one: every way out cuts material deeper than half the lead-out
-  int noLeadOutWalls = 0;       // without one: no way out keeps the allowance to walls, islands and floor
+  int noLeadOutMaterial = 0;    // without one: every way out bites deeper than half the lead-out, or the floor rises
+  int noLeadOutWalls = 0;       // without one: no way out keeps the allowance to walls and islands
   int levels = 1;               // most levels any tool needs for its flute length
   double minutesAtSafeHeight = 0.0;  // the time model with every move at safe_z
   double boundaryTolerance = 0.0;  // mm the walls were simplified by (limits.hpp), added to the radial allowance
