@@ -108,11 +108,24 @@ class ToolSetSearch {
       : in_(in), sel_(sel), planSet_(planSet), progress_(progress), smallest_(sel.candidates.back()),
         others_(sel.candidates.begin(), sel.candidates.end() - 1),
         accArea_(poly::area(accessibleRegion(region, 0.5 * smallest_, in.radialAllowance))) {
-    // The fewest minutes one plunge can take: from the safe height to the highest
-    // the floor can be, at the fastest feed.
+    // The highest the floor (plus its allowance) can be, and the fastest feed.
     const double zHigh = in.floor.kind == Floor::Kind::Flat ? in.floor.z + in.floorAllowance : in.topZ;
-    for (const Tool& t : in.tools)
-      perPlungeLB_ = std::min(perPlungeLB_, (in.safeZ - zHigh) * (1.0 / t.feed + 1.0 / in.timeModel.retractRate));
+    double feed = 0.0;
+    for (const Tool& t : in.tools) feed = std::max(feed, t.feed);
+    const double retract = in.timeModel.retractRate;
+    if (!in.stockAwareHeights) {
+      // Every plunge feeds down from safe_z and retracts back to it.
+      perPlunge_ = std::max(0.0, in.safeZ - zHigh) * (1.0 / feed + 1.0 / retract);
+    } else {
+      // A plunge feeds from at least the clearance above its depth (or safe_z)
+      // and retracts at least as high (motion.hpp); it feeds from at least the
+      // top of the stock under it and removes at most its disk times that, so
+      // all plunges feed at least the volume over the largest disk.
+      const double c = std::max(0.0, std::min(in.safeZ - zHigh, in.rapidClearance));
+      perPlunge_ = c / retract;
+      perPlungeFeed_ = c / feed;
+      volume_ = in.minCoverage * accArea_ * std::max(0.0, in.topZ - zHigh) / feed;
+    }
   }
 
   // The best plan found; throws when none could be planned, with every set's reason.
@@ -140,14 +153,16 @@ class ToolSetSearch {
   }
 
   // Every set below this node has at least these tools, and no disk larger than
-  // the largest still possible.
+  // the largest still possible: a true lower bound on its time, whatever the
+  // engagement limits (they only add plunges) and heights (see the constructor).
   double lowerBound(size_t i) const {
     const double rBig =
         0.5 * (!included_.empty() ? included_.front() : (i < others_.size() ? others_[i] : smallest_));
     const double nTools = included_.size() + 1.0;
     const TimeModel& m = in_.timeModel;
-    return in_.selection.weightTime *
-               (nTools * m.toolChangeSeconds / 60.0 + accArea_ / (M_PI * rBig * rBig) * perPlungeLB_) +
+    const double disk = M_PI * rBig * rBig, plunges = in_.minCoverage * accArea_ / disk;
+    const double moves = plunges * perPlunge_ + std::max(plunges * perPlungeFeed_, volume_ / disk);
+    return in_.selection.weightTime * (nTools * m.toolChangeSeconds / 60.0 + moves) +
            in_.selection.weightTools * nTools;
   }
 
@@ -156,13 +171,14 @@ class ToolSetSearch {
     ToolSetResult r;
     r.diameters = current();
     r.subtree = i < others_.size();
-    r.minutes = r.weighted = lb;
+    r.minutes = r.weighted = r.bound = lb;
     sel_.sets.push_back(r);
   }
 
   void evaluate(double lb) {
     ToolSetResult r;
     r.diameters = current();
+    r.bound = lb;
     PlanInput sub = in_;
     sub.autoTools = false;
     sub.tools.clear();
@@ -215,7 +231,9 @@ class ToolSetSearch {
   const double smallest_;
   const std::vector<double> others_;
   const double accArea_;
-  double perPlungeLB_ = std::numeric_limits<double>::infinity();  // minutes
+  // Minutes: per plunge (retract, or both ways at safe_z), per plunge fed, and
+  // the volume to feed through times the largest disk.
+  double perPlunge_ = 0.0, perPlungeFeed_ = 0.0, volume_ = 0.0;
   double best_ = std::numeric_limits<double>::infinity();
   std::optional<Plan> bestPlan_;
   std::vector<double> included_;

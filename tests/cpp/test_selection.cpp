@@ -91,6 +91,52 @@ TEST(Selection, BranchAndBoundFindsTheEnumeratedOptimum) {
   EXPECT_EQ(used, sel.chosen);
 }
 
+// With engagement limits (more plunges) and stock-aware heights (shorter
+// approaches, the default) the bound stays below every set's true time, so the
+// search still finds the enumerated optimum.
+TEST(Selection, LowerBoundHoldsWithLimitsAndStockAwareHeights) {
+  PlanInput in = neckInput();
+  ASSERT_TRUE(in.stockAwareHeights);
+  for (Tool& t : in.library) t.maxEngagement = 0.5 * t.diameter;
+  const Plan chosen = plan(in);
+  ASSERT_TRUE(chosen.selection);
+  const ToolSelection& sel = *chosen.selection;
+  const std::vector<double> others(sel.candidates.begin(), sel.candidates.end() - 1);
+  std::map<std::vector<double>, double> truth;
+  double best = 1e300;
+  for (unsigned mask = 0; mask < (1u << others.size()); ++mask) {
+    PlanInput sub = in;
+    sub.autoTools = false;
+    std::vector<double> set;
+    for (size_t i = 0; i < others.size(); ++i)
+      if (mask & (1u << i)) {
+        set.push_back(others[i]);
+        for (const Tool& t : in.library)
+          if (t.diameter == others[i]) sub.tools.push_back(t);
+      }
+    set.push_back(sel.candidates.back());
+    for (const Tool& t : in.library)
+      if (t.diameter == sel.candidates.back()) sub.tools.push_back(t);
+    truth[set] = plan(sub).stats.estimatedMinutes;
+    best = std::min(best, truth[set]);
+  }
+  EXPECT_NEAR(chosen.stats.estimatedMinutes, best, 1e-9 * best);
+  for (const ToolSetResult& r : sel.sets) {
+    ASSERT_TRUE(truth.count(r.diameters));
+    EXPECT_LE(r.bound, truth[r.diameters]) << r.diameters.size();  // a true lower bound
+    // A pruned subtree's bound holds for every set with its tools and the same
+    // largest one (those the subtree adds smaller candidates to among them).
+    if (r.subtree && r.diameters.size() >= 2) {
+      for (const auto& [set, minutes] : truth)
+        if (set.front() == r.diameters.front() &&
+            std::includes(set.begin(), set.end(), r.diameters.begin(), r.diameters.end() - 1,
+                          std::greater<double>())) {
+          EXPECT_LE(r.bound, minutes);
+        }
+    }
+  }
+}
+
 TEST(Selection, WeightOnToolCountPrefersFewerTools) {
   PlanInput in = neckInput();
   in.selection.weightTime = 0.0;

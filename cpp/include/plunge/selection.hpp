@@ -10,7 +10,9 @@
 //     time taken from that plan, so the comparison is between real plans.
 // 5.4 branch and bound over subsets of the candidates, largest first, with a lower
 //     bound from the plunges no set can do without (accessible area over the
-//     largest disk still possible); weighted time + number of tools, as the thesis.
+//     largest disk still possible) and the volume they must feed through, true
+//     with engagement limits and stock-aware heights; weighted time + number of
+//     tools, as the thesis.
 // 5.5 sub-regions ordered by a minimum spanning tree (reported; the plunges of
 //     each tool are then toured over the whole pocket, which is never longer).
 #pragma once
@@ -47,6 +49,7 @@ struct ToolSetResult {
   double coverage = 0.0;
   double minutes = 0.0;     // planned time, or the lower bound when pruned
   double weighted = 0.0;
+  double bound = 0.0;       // the branch and bound's lower bound on `weighted`
   std::string refused;      // why this set cannot be planned (not evaluated, not pruned)
 };
 
