@@ -40,6 +40,10 @@ namespace {
 // offset's arcs are chords whose midpoints lie up to kArcTolerance inside, and
 // a plunge there must still fit (Region::diskFits).
 constexpr double kCentreMargin = 0.01;
+// The wall band a limited tool leaves to its contour, as a share of
+// max_wall_stock: the contour is spaced for 0.8 of it on straight walls and
+// refined where curved walls leave more than this.
+constexpr double kWallBand = 0.9;
 
 // The material a tool must clear: points sampled on the height field's raster
 // inside its planned disks, each with the height the planned plunges cut it to.
@@ -261,38 +265,6 @@ double rowSpacing(double r, double step) {
 std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double wallStep, double rowSpacing) {
   std::vector<GrowthPath> out;
   if (centres.empty() || !(step > 0) || !(rowSpacing > 0)) return out;
-  // The contour: every loop of the centre region, at most wallStep apart
-  // along it, on every corner (a corner's plunge reaches into the pocket's
-  // corner; none between would).
-  for (const Loop& l : centres) {
-    const size_t m = l.size();
-    std::vector<size_t> corners;
-    for (size_t i = 0; i < m; ++i) {
-      const Vec2 a = l[(i + m - 1) % m], b = l[i], c = l[(i + 1) % m];
-      const double n1 = dist(a, b), n2 = dist(b, c);
-      if (n1 > 0 && n2 > 0 && dot(b - a, c - b) < std::cos(M_PI / 9) * n1 * n2) corners.push_back(i);
-    }
-    if (corners.empty()) corners.push_back(0);
-    GrowthPath path{{}, true};
-    for (size_t k = 0; k < corners.size(); ++k) {
-      // From this corner up to the next one, evenly.
-      const size_t from = corners[k], to = corners[(k + 1) % corners.size()];
-      const size_t span = (to + m - from) % m == 0 ? m : (to + m - from) % m;
-      double length = 0;
-      for (size_t s = 0; s < span; ++s) length += dist(l[(from + s) % m], l[(from + s + 1) % m]);
-      const int n = std::max(1, static_cast<int>(std::ceil(length / wallStep - 1e-9)));
-      double walked = 0;
-      int placed = 0;
-      for (size_t s = 0; s < span && placed < n; ++s) {
-        const Vec2 a = l[(from + s) % m], b = l[(from + s + 1) % m];
-        const double len = dist(a, b);
-        for (double next = length * placed / n; next <= walked + len && placed < n; next = length * ++placed / n)
-          path.at.push_back(len > 0 ? a + (b - a) * ((next - walked) / len) : a);
-        walked += len;
-      }
-    }
-    out.push_back(std::move(path));
-  }
   // Rows along the long axis; parallel to the longest wall instead where that
   // is within 10 degrees of it (a machinist's rows run along the walls).
   double th = longAxis(centres), longest = 0;
@@ -305,13 +277,94 @@ std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double
         th = a;
       }
     }
-  std::vector<GrowthPath> best = rowsAt(centres, th, step, rowSpacing);
-  for (GrowthPath& p : best) out.push_back(std::move(p));
+  // Each connected piece of the region on its own (the tool finishes one
+  // before it moves to another): its contour, then its rows.
+  const std::vector<Polygons> pieces = poly::components(centres);
+  for (size_t piece = 0; piece < pieces.size(); ++piece) {
+    const size_t first = out.size();
+    const Polygons& region = pieces[piece];
+    // The contour: every loop of the centre region, at most wallStep apart
+    // along it, on every corner (a corner's plunge reaches into the pocket's
+    // corner; none between would).
+    for (const Loop& l : region) {
+      const size_t m = l.size();
+      std::vector<size_t> corners;
+      for (size_t i = 0; i < m; ++i) {
+        const Vec2 a = l[(i + m - 1) % m], b = l[i], c = l[(i + 1) % m];
+        const double n1 = dist(a, b), n2 = dist(b, c);
+        if (n1 > 0 && n2 > 0 && dot(b - a, c - b) < std::cos(M_PI / 9) * n1 * n2) corners.push_back(i);
+      }
+      if (corners.empty()) corners.push_back(0);
+      GrowthPath path{{}, true};
+      for (size_t k = 0; k < corners.size(); ++k) {
+        // From this corner up to the next one, evenly.
+        const size_t from = corners[k], to = corners[(k + 1) % corners.size()];
+        const size_t span = (to + m - from) % m == 0 ? m : (to + m - from) % m;
+        double length = 0;
+        for (size_t s = 0; s < span; ++s) length += dist(l[(from + s) % m], l[(from + s + 1) % m]);
+        const int n = std::max(1, static_cast<int>(std::ceil(length / wallStep - 1e-9)));
+        double walked = 0;
+        int placed = 0;
+        for (size_t s = 0; s < span && placed < n; ++s) {
+          const Vec2 a = l[(from + s) % m], b = l[(from + s + 1) % m];
+          const double len = dist(a, b);
+          for (double next = length * placed / n; next <= walked + len && placed < n; next = length * ++placed / n)
+            path.at.push_back(len > 0 ? a + (b - a) * ((next - walked) / len) : a);
+          walked += len;
+        }
+      }
+      out.push_back(std::move(path));
+    }
+    for (GrowthPath& p : rowsAt(region, th, step, rowSpacing)) out.push_back(std::move(p));
+    for (size_t k = first; k < out.size(); ++k) out[k].piece = piece;
+  }
   return out;
 }
 
 
 namespace {
+
+// The nearest point on the region's loops to p.
+Vec2 nearestOnLoops(const Polygons& loops, Vec2 p) {
+  Vec2 best = p;
+  double bestD = std::numeric_limits<double>::infinity();
+  for (const Loop& l : loops)
+    for (size_t i = 0; i < l.size(); ++i) {
+      const Vec2 q = closestPointOnSegment({l[i], l[(i + 1) % l.size()]}, p);
+      if (dist(q, p) < bestD) {
+        bestD = dist(q, p);
+        best = q;
+      }
+    }
+  return best;
+}
+
+// Where a wall curves away from the contour, neighbours a wall step apart
+// leave a deeper scallop at the wall than on a straight one: a position is
+// added between two whose scallop (the circles' crossing on the wall side)
+// stands more than `scallop` beyond the allowance.
+void refineContour(GrowthPath& path, const Polygons& centres, const Region& region, double r, double allowance,
+                   double scallop) {
+  for (int pass = 0; pass < 4; ++pass) {
+    std::vector<Vec2> out;
+    bool added = false;
+    const size_t n = path.at.size();
+    for (size_t i = 0; i < n; ++i) {
+      const Vec2 a = path.at[i], b = path.at[(i + 1) % n];
+      out.push_back(a);
+      if (n < 2 || dist(a, b) < 1e-3) continue;
+      const std::vector<Vec2> cusps = intersectCircles({a, r}, {b, r});
+      double wall = std::numeric_limits<double>::infinity();  // the cusp on the wall side
+      for (Vec2 q : cusps) wall = std::min(wall, region.wallDistance(q, 2 * r));
+      if (cusps.size() == 2 && wall - allowance > scallop) {
+        out.push_back(nearestOnLoops(centres, a + (b - a) * 0.5));
+        added = true;
+      }
+    }
+    path.at = std::move(out);
+    if (!added) break;
+  }
+}
 
 class Grower {
  public:
@@ -374,7 +427,7 @@ class Grower {
     // by the contour's spacing), not a target: chasing the scallops the planned
     // disks would have left elsewhere costs plunges and leaves no less stock.
     if (in_.maxWallStock > 0) {
-      const double band = in_.radialAllowance + 0.9 * in_.maxWallStock;
+      const double band = in_.radialAllowance + kWallBand * in_.maxWallStock;
       targets.forget([&](Vec2 q) { return region_.wallDistance(q, band + 1.0) < band; });
     }
     const Polygons centres = poly::offset(allowedRegion(region_, in_.radialAllowance), -(r + kCentreMargin));
@@ -451,7 +504,10 @@ class Grower {
     double wallStep = step;
     const double scallop = 0.8 * in_.maxWallStock;
     if (scallop > 0 && scallop < r) wallStep = std::min(step, 2 * std::sqrt(r * r - (r - scallop) * (r - scallop)));
-    const std::vector<GrowthPath> paths = growthPaths(centres, step, wallStep, rowSpacing(r, step) - h);
+    std::vector<GrowthPath> paths = growthPaths(centres, step, wallStep, rowSpacing(r, step) - h);
+    if (scallop > 0)
+      for (GrowthPath& p : paths)
+        if (p.closed) refineContour(p, centres, region_, r, in_.radialAllowance, kWallBand * in_.maxWallStock);
     enum class Verdict { Skip, Blocked, Solid, Thin, Ok };
     struct Pos {
       Vec2 c;
@@ -564,16 +620,18 @@ class Grower {
     };
     std::vector<size_t> open(pos.size());
     for (size_t k = 0; k < pos.size(); ++k) open[k] = k;
-    std::vector<std::pair<double, size_t>> order;
+    std::vector<std::pair<std::pair<bool, double>, size_t>> order;
+    std::optional<size_t> piece;  // where the last plunge was
     while (targets.left() > 0) {
       progress_.tick();
-      // Nearest first (squared distances; ties by index, so deterministic).
+      // The piece of the region the tool is in first, then nearest first
+      // (squared distances; ties by index, so deterministic).
       open.erase(std::remove_if(open.begin(), open.end(), [&](size_t k) { return !pos[k].open; }), open.end());
       if (open.empty()) break;
       order.clear();
       for (size_t k : open) {
         const Vec2 d = pos[k].c - at;
-        order.push_back({d.x * d.x + d.y * d.y, k});
+        order.push_back({{piece && paths[pos[k].path].piece != *piece, d.x * d.x + d.y * d.y}, k});
       }
       std::sort(order.begin(), order.end());
       std::optional<size_t> entry, thin, start;
@@ -600,6 +658,7 @@ class Grower {
         break;
       }
       walkOn(entry ? *entry : *start);
+      piece = paths[pos[entry ? *entry : *start].path].piece;
     }
   }
 
@@ -630,7 +689,8 @@ class Grower {
     const double e = std::min(engagementLimit(tool), 2 * cutter.radius) + 2 * stock_.spacing();
     Polygons left = poly::subtract(poly::unionOfDisks(want), cleared_);
     if (in_.maxWallStock > 0)  // beyond the wall band, as the targets
-      left = poly::intersect(left, poly::offset(allowedRegion(region_, in_.radialAllowance), -0.9 * in_.maxWallStock));
+      left = poly::intersect(left,
+                             poly::offset(allowedRegion(region_, in_.radialAllowance), -kWallBand * in_.maxWallStock));
     for (const Polygons& piece : poly::components(left)) {
       if (poly::area(piece) < 0.01) continue;
       int best = -1;

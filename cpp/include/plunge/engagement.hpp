@@ -38,6 +38,7 @@ const Tool& startHoleTool(const std::vector<Tool>& tools, const Tool& tool);
 struct GrowthPath {
   std::vector<Vec2> at;
   bool closed = false;  // a loop of the contour
+  size_t piece = 0;     // the connected piece of the region it lies in
 };
 std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double wallStep, double rowSpacing);
 // How far apart rows of plunges of radius r, `step` apart along each row and
