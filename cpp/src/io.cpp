@@ -642,6 +642,12 @@ std::string planSummary(const Plan& plan) {
   if (st.restPlunges) s << "; " << st.restPlunges << " plunges added for the floor stock";
   if (st.startHoles) s << "; " << st.startHoles << " start holes";
   if (st.levels > 1) s << "; " << st.levels << " levels (flute length)";
+  if (const int without = st.noLeadOutMaterial + st.noLeadOutWalls; st.leadOuts + without > 0) {
+    s << "; lead-outs on " << st.leadOuts << " plunges";
+    if (without)
+      s << " (none on " << st.noLeadOutMaterial << " with material all round, " << st.noLeadOutWalls
+        << " with no room at the walls)";
+  }
   s << "; about " << st.estimatedMinutes << " min";
   if (st.minutesAtSafeHeight > st.estimatedMinutes + 0.05)
     s << " (" << st.minutesAtSafeHeight - st.estimatedMinutes << " min saved by stock-aware heights)";

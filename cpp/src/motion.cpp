@@ -198,7 +198,7 @@ enum class NoLeadOut { None, Material, Walls };
 // tests first, so the exact stock test runs on few of them.
 std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const DepthSolver& depths,
                               const HeightField& stock, const Touched& touched, const Plunge& p,
-                              const Cutter& cutter, std::optional<Vec2> back, NoLeadOut& why) {
+                              const Cutter& cutter, std::optional<Plunge> back, NoLeadOut& why) {
   const Vec2 c{p.x, p.y};
   struct End {
     Vec2 at;
@@ -209,7 +209,13 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
     const Vec2 end = c + d * (in.leadOut / norm(d));
     ends.push_back({end, region.wallDistance(end, 4 * cutter.radius)});
   };
-  if (back && dist(*back, c) > 1e-6) add(*back - c);
+  Vec2 backEnd;
+  if (back && (dist(Vec2{back->x, back->y}, c) < in.leadOut || back->z > p.z + 1e-9 || in.leadOut >= cutter.radius))
+    back.reset();
+  if (back) {
+    add(Vec2{back->x, back->y} - c);
+    backEnd = ends.back().at;
+  }
   for (int d = 0; d < 16; ++d) add({std::cos(2 * M_PI * d / 16), std::sin(2 * M_PI * d / 16)});
   std::stable_sort(ends.begin(), ends.end(), [](const End& a, const End& b) { return a.room > b.room + 1e-9; });
   const int samples = std::max(2, static_cast<int>(std::ceil(in.leadOut / (0.25 * cutter.radius))));
@@ -244,8 +250,16 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
       continue;
     if (fitsAt(k)) return end;
   }
+  // Back toward the plunge before (as deep or deeper, at least the lead-out
+  // away): the moved disk lies in the two holes but for its flanks, which
+  // stand at most sqrt(r^2 + L^2) - r < L / 2 beyond this hole (L < r).
+  if (back)
+    for (size_t k = 0; k < ends.size(); ++k)
+      if (ends[k].at == backEnd && fitsAt(k)) return ends[k].at;
+  // Else any direction the raster sees grazing less than half the lead-out,
+  // with a cell's margin (a cell's centre stands for points that far away).
   for (size_t k = 0; k < ends.size(); ++k)
-    if (stock.bite(c, ends[k].at, cutter, p.z) <= 0.5 * in.leadOut && fitsAt(k)) return ends[k].at;
+    if (stock.bite(c, ends[k].at, cutter, p.z) <= 0.5 * in.leadOut - margin && fitsAt(k)) return ends[k].at;
   bool room = false;
   for (size_t k = 0; k < ends.size() && !room; ++k) room = fits[k] == 1 || wallsKept(ends[k].at);
   if (!room) {
@@ -299,8 +313,8 @@ void planMotion(const PlanInput& in, const Region& region, const DepthSolver& de
     p.leadOut.reset();
     if (in.leadOut > 0.0) {
       // Back toward the plunge before, where the same tool just cut.
-      std::optional<Vec2> back;
-      if (i > 0 && ps[i - 1].toolId == p.toolId) back = Vec2{ps[i - 1].x, ps[i - 1].y};
+      std::optional<Plunge> back;
+      if (i > 0 && ps[i - 1].toolId == p.toolId) back = ps[i - 1];
       NoLeadOut why = NoLeadOut::None;
       p.leadOut = leadOutOf(in, region, depths, stock, touched, p, cutter, back, why);
       if (why == NoLeadOut::Material) ++plan.stats.noLeadOutMaterial;
@@ -322,13 +336,6 @@ void planMotion(const PlanInput& in, const Region& region, const DepthSolver& de
        " walls leave no wider cut): the tool may deflect there");
   warn(coreOnMaterial, " plunges of a non-centre-cutting tool have material under the core (uneven floor depths)");
   warn(tooDeep, " plunges cut deeper than their tool's flute length");
-  if (in.leadOut > 0.0) {
-    warn(plan.stats.noLeadOutMaterial,
-         " plunges retract without a lead-out: material all round would be cut deeper than half the lead-out, or"
-         " the floor rises (plunges into solid, wrapped by uncut stock, or in a hollow of a sculptured floor)");
-    warn(plan.stats.noLeadOutWalls,
-         " plunges retract without a lead-out: no direction keeps the allowance to the walls and islands");
-  }
   plan.stats.estimatedMinutes = motionMinutes(plan, in.tools, in, false);
   plan.stats.minutesAtSafeHeight = motionMinutes(plan, in.tools, in, true);
 }

@@ -163,8 +163,5 @@ def test_limited_plans_stay_near_the_row_bound_and_lead_out(cli, tmp_path, shape
         with_lead_out = sum("lead_out" in p for p in plunges)
         assert with_lead_out == stats["lead_outs"]
         assert with_lead_out >= 0.9 * len(plunges), (kind, with_lead_out, len(plunges))
-        # The others are counted by reason, and said.
-        missing = stats["no_lead_out_material"] + stats["no_lead_out_walls"]
-        assert missing == len(plunges) - with_lead_out
-        if missing:
-            assert any("without a lead-out" in w for w in plan["warnings"])
+        # The others are counted by reason.
+        assert stats["no_lead_out_material"] + stats["no_lead_out_walls"] == len(plunges) - with_lead_out
