@@ -38,8 +38,9 @@ namespace {
 
 // Centres this much farther from the allowed region than the radius: the
 // offset's arcs are chords whose midpoints lie up to kArcTolerance inside, and
-// a plunge there must still fit (Region::diskFits).
-constexpr double kCentreMargin = 0.01;
+// a plunge there must still fit (Region::diskFits); and a lead-out along a
+// wall that bulges in (a chord to the plunge before) keeps the allowance.
+constexpr double kCentreMargin = 0.05;
 // The wall band a limited tool leaves to its contour, as a share of
 // max_wall_stock: the contour is spaced for 0.8 of it on straight walls and
 // refined where curved walls leave more than this.

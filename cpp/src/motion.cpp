@@ -49,6 +49,46 @@ class Touched {
     disks_.push_back({{c, r}, bottom});
     grid_[key(cellOf(c.x), cellOf(c.y))].push_back(disks_.size() - 1);
   }
+  // Centres of the disks at least `r` wide, cut no higher than `bottom`,
+  // between `from` and `to` away from c, nearest first (at most `count`).
+  std::vector<Vec2> holesNear(Vec2 c, double r, double bottom, double from, double to, size_t count) const {
+    std::vector<std::pair<double, Vec2>> found;
+    for (long j = cellOf(c.y - to) - 1; j <= cellOf(c.y + to) + 1; ++j)
+      for (long i = cellOf(c.x - to) - 1; i <= cellOf(c.x + to) + 1; ++i) {
+        auto it = grid_.find(key(i, j));
+        if (it == grid_.end()) continue;
+        for (size_t k : it->second) {
+          const Disk& d = disks_[k];
+          const double l = dist(d.circle.c, c);
+          if (l >= from && l <= to && d.circle.r >= r - 1e-9 && d.bottom <= bottom + 1e-9)
+            found.push_back({l, d.circle.c});
+        }
+      }
+    std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<Vec2> out;
+    for (size_t k = 0; k < found.size() && k < count; ++k) out.push_back(found[k].second);
+    return out;
+  }
+  // How far beyond the hole at c (radius r) a disk of radius r moved to `end`
+  // reaches into material: the largest distance beyond r from c of what of it
+  // no disk cut to `bottom` or deeper covers (polygons; negative: nothing).
+  double bite(Vec2 c, Vec2 end, double r, double bottom) const {
+    std::vector<Circle> cut;
+    const double reach = 2 * r + dist(c, end);
+    for (long j = cellOf(end.y - reach) - 1; j <= cellOf(end.y + reach) + 1; ++j)
+      for (long i = cellOf(end.x - reach) - 1; i <= cellOf(end.x + reach) + 1; ++i) {
+        auto it = grid_.find(key(i, j));
+        if (it == grid_.end()) continue;
+        for (size_t k : it->second) {
+          const Disk& d = disks_[k];
+          if (d.bottom <= bottom + 1e-9 && dist(d.circle.c, end) < d.circle.r + r) cut.push_back(d.circle);
+        }
+      }
+    double deepest = -1.0;
+    for (const Loop& l : poly::subtract({poly::disk({end, r - 0.01})}, poly::unionOfDisks(cut)))
+      for (Vec2 v : l) deepest = std::max(deepest, dist(v, c) - r);
+    return deepest;
+  }
   // The highest stock a disk of radius r swept from a to b passes over (an upper bound).
   double highestAlong(Vec2 a, Vec2 b, double r) const {
     const Segment path{a, b};
@@ -190,12 +230,13 @@ namespace {
 enum class NoLeadOut { None, Material, Walls };
 
 // The lead-out end of a plunge just made (stock already cut by it), or none
-// and why: of the 16 directions (and the one back to the plunge before) that
-// do not gouge, the one ending farthest from the walls that cuts no material,
-// else the first that only grazes material at its flanks, biting at most half
-// the lead-out deeper than the plunge's own hole (a move back along a row
-// grazes the waist between two holes). Tried from the most room down, cheap
-// tests first, so the exact stock test runs on few of them.
+// and why. Only directions that keep the allowance to the walls and do not
+// cut the floor; of those, first one ending in cut space (no material under
+// the moved disk, the most room from the walls first), then one toward a hole
+// cut before (whose graze is bounded by geometry, below), then any that grazes
+// material at its flanks by at most half the lead-out beyond the plunge's own
+// hole, measured with the holes' polygons. Cheap tests first, so the exact
+// ones run on few directions.
 std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const DepthSolver& depths,
                               const HeightField& stock, const Touched& touched, const Plunge& p,
                               const Cutter& cutter, std::optional<Plunge> back, NoLeadOut& why) {
@@ -209,15 +250,43 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
     const Vec2 end = c + d * (in.leadOut / norm(d));
     ends.push_back({end, region.wallDistance(end, 4 * cutter.radius)});
   };
-  Vec2 backEnd;
-  if (back && (dist(Vec2{back->x, back->y}, c) < in.leadOut || back->z > p.z + 1e-9 || in.leadOut >= cutter.radius))
-    back.reset();
-  if (back) {
-    add(Vec2{back->x, back->y} - c);
-    backEnd = ends.back().at;
+  // Toward holes cut before, as wide and as deep, d from this one (the
+  // plunge before first): the moved disk lies in the two holes but where it
+  // crosses between them, at most sqrt(r^2 + L^2 + L (d - L)) - r beyond this
+  // hole, no more than half the lead-out L while d <= r + L / 4.
+  std::vector<Vec2> holes;
+  const double r = cutter.radius, L = in.leadOut, reach = r + 0.25 * L;
+  if (L < r) {
+    if (back && dist(Vec2{back->x, back->y}, c) >= L && dist(Vec2{back->x, back->y}, c) <= reach &&
+        back->z <= p.z + 1e-9)
+      holes.push_back({back->x, back->y});
+    for (Vec2 h : touched.holesNear(c, r, p.z + cutterProfile(cutter, r), L, reach, 8)) holes.push_back(h);
   }
+  const size_t nHoles = holes.size();
+  for (Vec2 h : holes) add(h - c);
   for (int d = 0; d < 16; ++d) add({std::cos(2 * M_PI * d / 16), std::sin(2 * M_PI * d / 16)});
-  std::stable_sort(ends.begin(), ends.end(), [](const End& a, const End& b) { return a.room > b.room + 1e-9; });
+  // Beside the way to a hole (a contour along a wall that bulges in: the
+  // straight way back comes too near the wall), measured with polygons below.
+  for (Vec2 h : holes)
+    for (double turn : {-20.0, 20.0, -40.0, 40.0}) {
+      const double a = std::atan2(h.y - c.y, h.x - c.x) + turn * M_PI / 180;
+      add({std::cos(a), std::sin(a)});
+    }
+  std::vector<bool> towardHole(ends.size(), false);
+  for (size_t k = 0; k < nHoles; ++k) towardHole[k] = true;
+  std::vector<size_t> rank(ends.size());
+  for (size_t k = 0; k < rank.size(); ++k) rank[k] = k;
+  std::stable_sort(rank.begin(), rank.end(), [&](size_t a, size_t b) { return ends[a].room > ends[b].room + 1e-9; });
+  {
+    std::vector<End> sorted;
+    std::vector<bool> hole;
+    for (size_t k : rank) {
+      sorted.push_back(ends[k]);
+      hole.push_back(towardHole[k]);
+    }
+    ends = std::move(sorted);
+    towardHole = std::move(hole);
+  }
   const int samples = std::max(2, static_cast<int>(std::ceil(in.leadOut / (0.25 * cutter.radius))));
   // Walls and islands (never nearer than the allowance), then the floor under
   // the moving tool (a depth optimization per sample on sculptured floors).
@@ -250,16 +319,14 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
       continue;
     if (fitsAt(k)) return end;
   }
-  // Back toward the plunge before (as deep or deeper, at least the lead-out
-  // away): the moved disk lies in the two holes but for its flanks, which
-  // stand at most sqrt(r^2 + L^2) - r < L / 2 beyond this hole (L < r).
-  if (back)
-    for (size_t k = 0; k < ends.size(); ++k)
-      if (ends[k].at == backEnd && fitsAt(k)) return ends[k].at;
-  // Else any direction the raster sees grazing less than half the lead-out,
-  // with a cell's margin (a cell's centre stands for points that far away).
   for (size_t k = 0; k < ends.size(); ++k)
-    if (stock.bite(c, ends[k].at, cutter, p.z) <= 0.5 * in.leadOut - margin && fitsAt(k)) return ends[k].at;
+    if (towardHole[k] && fitsAt(k)) return ends[k].at;
+  // Else any direction whose disk the holes cut so far (as deep) leave to
+  // graze less than half the lead-out, measured exactly with their polygons.
+  for (size_t k = 0; k < ends.size(); ++k)
+    if (!towardHole[k] && stock.bite(c, ends[k].at, cutter, p.z) <= 0.5 * L &&
+        touched.bite(c, ends[k].at, r, p.z + cutterProfile(cutter, r)) <= 0.5 * L && fitsAt(k))
+      return ends[k].at;
   bool room = false;
   for (size_t k = 0; k < ends.size() && !room; ++k) room = fits[k] == 1 || wallsKept(ends[k].at);
   if (!room) {

@@ -496,7 +496,7 @@ def plunge_mill_bit():
     job.ViewObject.Proxy.taskPanel.form.findChild(QtGui.QPushButton, "toolControllerAdd").click()
     wait(1)
     click_task_button("OK")
-    wait(1)
+    wait(10, lambda: not FreeCADGui.Control.activeDialog())
     tcs = [tc for tc in job.Tools.Group if compat.bit_shape(tc.Tool) == plunge_mill.SHAPE]
     result["plunge_mill"] = {"added": [tc.Label for tc in tcs]}
     step("plunge mill added from the library")
@@ -522,7 +522,11 @@ def plunge_mill_bit():
             FreeCAD.Rotation(FreeCAD.Vector(1, 0, 0), 125)))
         FreeCADGui.SendMsgToActiveView("ViewFit")
         FreeCADGui.ActiveDocument.setEdit(tc.Tool.Name)
-        wait(2)
+        # The editor builds its shape first: on a loaded machine that takes seconds.
+        wait(15, lambda: FreeCADGui.Control.activeDialog() and any(
+            b.isVisible() and b.text().replace("&", "") == "Cancel"
+            for b in FreeCADGui.getMainWindow().findChildren(QtGui.QPushButton)))
+        wait(1)
         result["plunge_mill"]["editor"] = bool(FreeCADGui.Control.activeDialog())
         screenshot("plunge_mill_bit.png")
         click_task_button("Cancel")
