@@ -2,15 +2,19 @@
 // plungers (Tool::maxEngagement, minEngagement, centerCutting, coreDiameter).
 //
 // A packing of full disks makes every plunge cut its whole diameter. A tool
-// limited to a radial band e instead grows its cut from a start: with C the
-// plan-view region cut so far, a plunge centred in the inward offset of C by
-// r - e meets no material farther than e from C (every point of its disk lies
-// within r of the centre, whose disk of radius r - e is inside C). The planner
-// walks the boundary of that offset ring by ring, keeping the plunges that
-// clear the tool's own targets (its plunges in the packing/covering plan), so
-// positions and order come together. A non-centre-cutting tool's core of
-// radius rc lies over C when r - e >= rc, so it grows the same way with
-// e <= r - rc, from start holes drilled by a centre-cutting tool of the job.
+// limited to a radial band e instead grows its cut from a start, as plunge-mill
+// makers prescribe: rows, a step of at most e along each. A plunge a step on
+// from the one before it cuts a crescent no thicker than the step (every point
+// of its disk lies within the step of the other disk). The planner lays the
+// rows over the tool's centre region (growthPaths: its contour first, then
+// rows along its long axis) and enters each path next to material already
+// cut, so positions and order come together; the plunges that clear the tool's
+// own targets (its share of the packing/covering plan) are kept. What the
+// paths miss is grown ring by ring: a plunge centred in the region cut so far
+// shrunk by r - e meets no material farther than e from it. A non-centre-
+// cutting tool's core of radius rc lies over cut material when its step keeps
+// within r - rc, so it grows the same way with e <= r - rc, from start holes
+// drilled by a centre-cutting tool of the job.
 #pragma once
 #include <vector>
 
