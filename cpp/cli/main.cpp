@@ -54,9 +54,9 @@ int main(int argc, char** argv) {
   } catch (const plunge::Error& e) {
     std::cerr << "plunge-rough: error: " << input << ": " << e.what() << "\n";
     return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "plunge-rough: internal error: " << e.what() << "\n";
-    return 1;
+  } catch (const std::exception& e) {  // plunge::InternalError, or anything else unforeseen: a bug
+    std::cerr << "plunge-rough: internal error: " << e.what() << ": please report it with " << input << "\n";
+    return 3;
   }
   return 0;
 }

@@ -1,5 +1,6 @@
 // The Python module `plunge` (README "Using it", docs/plan-format.md): conversions and
-// bindings only. plunge::Error becomes ValueError; long calls release the GIL.
+// bindings only. plunge::Error becomes ValueError, plunge::InternalError
+// RuntimeError; long calls release the GIL.
 #include <pybind11/functional.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -143,6 +144,7 @@ plunge::OptimizeResult optimizePy(const py::function& f, const std::vector<std::
 PYBIND11_MODULE(plunge, m) {
   m.doc() = "Plunge roughing planner: circle packing, gap covering, sequencing and depths";
   py::register_exception<plunge::Error>(m, "PlanError", PyExc_ValueError);
+  py::register_exception<plunge::InternalError>(m, "InternalError", PyExc_RuntimeError);
   m.def("plan", &planDict, py::arg("input"), py::arg("svg") = false, py::arg("progress") = py::none(),
         "Plan a pocket: input and output dicts as in docs/plan-format.md; with svg=True "
         "the result also holds \"svg\", the plan's picture. progress(fraction, stage) is called "

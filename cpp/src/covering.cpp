@@ -682,7 +682,7 @@ class Coverer {
     const double r = radii_[t];
     double bound = 0.0;
     for (int o : piecesNear({c.x - r, c.y - r}, {c.x + r, c.y + r})) bound += pieces_[o].area;
-    bound = std::min(bound, M_PI * r * r);
+    bound = std::min(bound, kPi * r * r);
     if (bound < 0.5 * crumb_) return;
     (pieces_[id].pin ? pinQueue_ : wallQueue_).push({bound, seq_++, c, t, id});
   }

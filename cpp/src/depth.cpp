@@ -41,10 +41,10 @@ double rimMaximum(const std::function<double(Vec2)>& g, Vec2 c, double r, double
   OptimizeOptions opt;
   opt.periodic = true;
   opt.skipNonFinite = true;
-  opt.samples = std::clamp(static_cast<int>(std::ceil(2 * M_PI * r / spacing)), 48, 720);
+  opt.samples = std::clamp(static_cast<int>(std::ceil(2 * kPi * r / spacing)), 48, 720);
   try {
     return optimize([&](const double* t) { return g({c.x + r * std::cos(t[0]), c.y + r * std::sin(t[0])}); },
-                    {{0.0, 2 * M_PI}}, Goal::Maximize, opt)
+                    {{0.0, 2 * kPi}}, Goal::Maximize, opt)
         .value;
   } catch (const Error&) {
     return -kInf;  // no floor anywhere on the rim
@@ -138,9 +138,9 @@ double stopHeightBruteForce(const FloorSurface& floor, Vec2 c, const Cutter& cut
       const double v = lift({x, y});
       if (std::isfinite(v)) inner.push_back({v, {x, y}});
     }
-  const int n = std::max(16, static_cast<int>(std::ceil(2 * M_PI * R / h)));
+  const int n = std::max(16, static_cast<int>(std::ceil(2 * kPi * R / h)));
   for (int k = 0; k < n; ++k) {
-    const double t = 2 * M_PI * k / n;
+    const double t = 2 * kPi * k / n;
     const double v = lift({c.x + R * std::cos(t), c.y + R * std::sin(t)});
     if (std::isfinite(v)) rim.push_back({v, {t, 0}});
   }

@@ -273,7 +273,7 @@ std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double
     for (size_t i = 0; i < l.size(); ++i) {
       const Vec2 d = l[(i + 1) % l.size()] - l[i];
       const double a = std::atan2(d.y, d.x);
-      if (norm(d) > longest && std::fabs(std::remainder(a - longAxis(centres), M_PI)) < M_PI / 18) {
+      if (norm(d) > longest && std::fabs(std::remainder(a - longAxis(centres), kPi)) < kPi / 18) {
         longest = norm(d);
         th = a;
       }
@@ -293,7 +293,7 @@ std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double
       for (size_t i = 0; i < m; ++i) {
         const Vec2 a = l[(i + m - 1) % m], b = l[i], c = l[(i + 1) % m];
         const double n1 = dist(a, b), n2 = dist(b, c);
-        if (n1 > 0 && n2 > 0 && dot(b - a, c - b) < std::cos(M_PI / 9) * n1 * n2) corners.push_back(i);
+        if (n1 > 0 && n2 > 0 && dot(b - a, c - b) < std::cos(kPi / 9) * n1 * n2) corners.push_back(i);
       }
       if (corners.empty()) corners.push_back(0);
       GrowthPath path{{}, true};
@@ -396,7 +396,7 @@ class Grower {
   const Tool& toolOf(int id) const {
     for (const Tool& t : in_.tools)
       if (t.id == id) return t;
-    throw Error("internal: a plunge of an unknown tool");
+    throw InternalError("a plunge of an unknown tool");
   }
   void add(const Plunge& p) {
     order_.push_back(p);
@@ -437,7 +437,7 @@ class Grower {
     const double depthIn = r - 0.98 * e;
     const double step = std::clamp(0.9 * std::sqrt(std::max(0.0, r * r - depthIn * depthIn)),
                                    std::max(tool.minEngagement, 2 * h), r);
-    const int minGain = std::max(3, static_cast<int>(0.003 * M_PI * r * r / (h * h)));
+    const int minGain = std::max(3, static_cast<int>(0.003 * kPi * r * r / (h * h)));
     std::vector<bool> triedStart(planned.size(), false);
     Vec2 at = order_.empty() ? (in_.start ? *in_.start : region_.loops()[0].front())
                              : Vec2{order_.back().x, order_.back().y};

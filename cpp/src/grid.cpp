@@ -74,7 +74,7 @@ CoverResult gridPlacements(const Region& region, const std::vector<double>& radi
     // What the larger tools left, for the smaller ones.
     std::vector<Piece> left;
     if (k > 0) left = piecesOf(uncoveredRegion(acc, placed), 4 * r);
-    const double need = opt.minGain * M_PI * r * r;
+    const double need = opt.minGain * kPi * r * r;
     int row = 0;
     for (double y = lo.y + r + opt.allowance; y <= hi.y - r - opt.allowance + 1e-9; y += dy, ++row) {
       opt.progress.tick();

@@ -56,7 +56,7 @@ const Tool* grownTool(const PlanInput& in) {
 
 double estimatedPlunges(const PlanInput& in) {
   const double area = pocketArea(in), r = 0.5 * in.tools.back().diameter;
-  const double packed = area / (M_PI * r * r);
+  const double packed = area / (kPi * r * r);
   const Tool* g = grownTool(in);
   // A grown cut: rows about 0.87 D apart, a plunge every e along them.
   return g ? std::max(packed, kGrowthCost * area / (0.87 * g->diameter * std::min(band(*g), g->diameter))) : packed;
@@ -107,7 +107,7 @@ void checkScale(const PlanInput& in) {
     const Vec2 lo = box.lo, hi = box.hi;
     const double r = 0.5 * in.tools.back().diameter;
     const Tool* g = grownTool(in);
-    const bool grown = g && n > pocketArea(in) / (M_PI * r * r);
+    const bool grown = g && n > pocketArea(in) / (kPi * r * r);
     const Tool& t = grown ? *g : in.tools.back();
     std::ostringstream m;
     m.precision(3);

@@ -8,6 +8,7 @@
 #include "detail.hpp"
 #include "plunge/covering.hpp"
 #include "plunge/engagement.hpp"
+#include "plunge/error.hpp"
 #include "plunge/polygon.hpp"
 
 namespace plunge {
@@ -17,7 +18,7 @@ namespace {
 const Tool& toolOf(const std::vector<Tool>& tools, int id) {
   for (const Tool& t : tools)
     if (t.id == id) return t;
-  return tools.front();
+  throw InternalError("a plunge of an unknown tool");
 }
 
 // Runs of consecutive plunges with the same tool and role.
@@ -156,7 +157,7 @@ class Touched {
       const Vec2 q = a + (b - a) * (static_cast<double>(s) / along);
       if (uncovered(q)) return true;
       for (int k = 0; k < 24; ++k) {
-        const double t = 2 * M_PI * k / 24;
+        const double t = 2 * kPi * k / 24;
         for (double f : {0.5, 1.0})
           if (uncovered(q + Vec2{std::cos(t), std::sin(t)} * (f * inner))) return true;
       }
@@ -264,12 +265,12 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
   }
   const size_t nHoles = holes.size();
   for (Vec2 h : holes) add(h - c);
-  for (int d = 0; d < 16; ++d) add({std::cos(2 * M_PI * d / 16), std::sin(2 * M_PI * d / 16)});
+  for (int d = 0; d < 16; ++d) add({std::cos(2 * kPi * d / 16), std::sin(2 * kPi * d / 16)});
   // Beside the way to a hole (a contour along a wall that bulges in: the
   // straight way back comes too near the wall), measured with polygons below.
   for (Vec2 h : holes)
     for (double turn : {-20.0, 20.0, -40.0, 40.0}) {
-      const double a = std::atan2(h.y - c.y, h.x - c.x) + turn * M_PI / 180;
+      const double a = std::atan2(h.y - c.y, h.x - c.x) + turn * kPi / 180;
       add({std::cos(a), std::sin(a)});
     }
   std::vector<bool> towardHole(ends.size(), false);

@@ -176,7 +176,7 @@ std::unique_ptr<FloorSurface> makeFloor(const PlanInput& in) {
 int toolIndex(const PlanInput& in, int id) {
   for (size_t t = 0; t < in.tools.size(); ++t)
     if (in.tools[t].id == id) return static_cast<int>(t);
-  throw Error("internal: a plunge of an unknown tool");
+  throw InternalError("a plunge of an unknown tool");
 }
 
 // A floor or a plunger that is not flat: plunges stop at different heights.
@@ -249,7 +249,7 @@ CoverResult placePlunges(const PlanInput& in, const Region& region, const std::v
       for (PackedDisk& d : packed) d.tool = static_cast<int>(k);
       if (k + 1 == radii.size() ||
           coreOutOfReach(region, radii[k], in.radialAllowance, core, packed) <=
-              kGreedyDisks * M_PI * radii[k + 1] * radii[k + 1])
+              kGreedyDisks * kPi * radii[k + 1] * radii[k + 1])
         break;
     }
     return coverRegion(region, radii, packed, co);
@@ -294,11 +294,9 @@ void sequence(const PlanInput& in, const std::vector<CutDisk>& disks, Plan& out)
     if (pts.empty()) continue;
     for (int i : tour(pts, false, at, to)) {
       const Vec2 p = pts[i];
-      if (!out.plunges.empty()) out.stats.travelLength += dist({out.plunges.back().x, out.plunges.back().y}, p);
       out.plunges.push_back(plungeOf(in.tools[t], p, mine[i]->z));
       at = p;
     }
-    out.stats.perTool.push_back({in.tools[t].id, in.tools[t].diameter, static_cast<int>(pts.size())});
   }
 }
 
@@ -409,7 +407,6 @@ void coverageStats(const PlanInput& in, const Region& region, const Polygons& co
                    Plan& out) {
   const double rMax = 0.5 * in.tools.front().diameter;
   out.uncovered = cover.uncovered;
-  out.stats.regionArea = poly::area(allowedRegion(region, in.radialAllowance));
   out.stats.accessibleArea = cover.accessibleArea;
   out.stats.coveredArea = cover.coveredArea;
   out.stats.coverage = cover.accessibleArea > 0 ? cover.coveredArea / cover.accessibleArea : 0.0;

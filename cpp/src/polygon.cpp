@@ -42,14 +42,14 @@ double area(const Paths& p) {
 Path diskPath(const Circle& c, double chordError, bool circumscribed) {
   // The chord error (sagitta) of n vertices is r (1 - cos(pi / n)).
   const double e = std::clamp(chordError / c.r, 1e-9, 0.5);
-  const int n = std::max(12, static_cast<int>(std::ceil(M_PI / std::acos(1.0 - e))));
+  const int n = std::max(12, static_cast<int>(std::ceil(kPi / std::acos(1.0 - e))));
   // Circumscribed: vertices beyond the circle so that the edges touch it; one unit
   // more to stay outside after rounding to integers.
-  const double r = circumscribed ? c.r / std::cos(M_PI / n) + 1.0 / poly::kScale : c.r;
+  const double r = circumscribed ? c.r / std::cos(kPi / n) + 1.0 / poly::kScale : c.r;
   Path out;
   out.reserve(n);
   for (int i = 0; i < n; ++i) {
-    const double a = 2.0 * M_PI * i / n;
+    const double a = 2.0 * kPi * i / n;
     out.push_back(toInt({c.c.x + r * std::cos(a), c.c.y + r * std::sin(a)}));
   }
   return out;

@@ -160,7 +160,7 @@ class ToolSetSearch {
         0.5 * (!included_.empty() ? included_.front() : (i < others_.size() ? others_[i] : smallest_));
     const double nTools = included_.size() + 1.0;
     const TimeModel& m = in_.timeModel;
-    const double disk = M_PI * rBig * rBig, plunges = in_.minCoverage * accArea_ / disk;
+    const double disk = kPi * rBig * rBig, plunges = in_.minCoverage * accArea_ / disk;
     const double moves = plunges * perPlunge_ + std::max(plunges * perPlungeFeed_, volume_ / disk);
     return in_.selection.weightTime * (nTools * m.toolChangeSeconds / 60.0 + moves) +
            in_.selection.weightTools * nTools;
@@ -221,7 +221,7 @@ class ToolSetSearch {
   const Tool& toolOf(double d) const {
     for (const Tool& t : in_.tools)
       if (t.diameter == d) return t;
-    return in_.tools.back();
+    throw InternalError("a candidate diameter that is not in the library");
   }
 
   const PlanInput& in_;

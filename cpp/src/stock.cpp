@@ -155,7 +155,7 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
   // floor too steep for the limit (no plunger can meet it) this skips nearly
   // every stop height.
   std::array<Vec2, 8> compass;  // unit vectors every 45 degrees, for both tests below
-  for (int a = 0; a < 8; ++a) compass[a] = {std::cos(a * M_PI / 4), std::sin(a * M_PI / 4)};
+  for (int a = 0; a < 8; ++a) compass[a] = {std::cos(a * kPi / 4), std::sin(a * kPi / 4)};
   auto mayFix = [&](Vec2 c, size_t t, size_t k) {
     const Cutter& cut = cutters[t];
     double low = -std::numeric_limits<double>::infinity();
@@ -228,7 +228,7 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
       for (double f : {0.45, 0.9})
         for (int a = 0; a < 12; ++a)
           centres.push_back(
-              pushOffWalls(region, p + Vec2{std::cos(a * M_PI / 6), std::sin(a * M_PI / 6)} * (f * r), clearance));
+              pushOffWalls(region, p + Vec2{std::cos(a * kPi / 6), std::sin(a * kPi / 6)} * (f * r), clearance));
       for (const Vec2& c : centres) {
         // Only a disk over the sample's whole neighbourhood can fix it (`fixes`):
         // others are not worth a stop height.

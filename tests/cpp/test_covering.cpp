@@ -19,7 +19,7 @@ static CoveringOptions covering(double allowance, double minCoverage) {
 TEST(Covering, AccessibleRegionOfARectangle) {
   const Region r({{0, 0}, {200, 0}, {200, 100}, {0, 100}}, {});
   // Shrunk by 0.5, opened by radius 3: the corners lose (4 - pi) r^2.
-  const double expected = 199 * 99 - (4 - M_PI) * 9;
+  const double expected = 199 * 99 - (4 - kPi) * 9;
   EXPECT_NEAR(poly::area(accessibleRegion(r, 3, 0.5)), expected, 0.05);
   EXPECT_NEAR(poly::area(allowedRegion(r, 0.5)), 199 * 99, 1e-6);
   EXPECT_TRUE(accessibleRegion(r, 60, 0.0).empty());  // a 120 mm tool fits nowhere

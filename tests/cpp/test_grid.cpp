@@ -85,7 +85,7 @@ TEST(Grid, SmallerToolsOnlyWhereTheLargerLeftMaterial) {
     ++small;
     EXPECT_LT(test::bruteWallDistance({rect}, d.center), 10.0);
     const Polygons disk{test::circleLoop(d.center, d.radius, 64)};
-    EXPECT_GE(poly::area(uncoveredRegion(disk, large)), o.minGain * M_PI * d.radius * d.radius * 0.9);
+    EXPECT_GE(poly::area(uncoveredRegion(disk, large)), o.minGain * kPi * d.radius * d.radius * 0.9);
   }
   EXPECT_GE(small, 4);  // at least the four corners the 20 mm plunger cannot reach
 }

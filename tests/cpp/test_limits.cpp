@@ -26,7 +26,7 @@ bool has(const std::string& s, const std::string& part) { return s.find(part) !=
 Loop freeForm(int n) {
   Loop out;
   for (int i = 0; i < n; ++i) {
-    const double t = 2 * M_PI * i / n;
+    const double t = 2 * kPi * i / n;
     const double r = (1 + 0.15 * std::sin(3 * t) + 0.08 * std::cos(5 * t)) / 1.23;
     out.push_back({300 + 290 * r * std::cos(t), 200 + 190 * r * std::sin(t)});
   }
@@ -68,8 +68,8 @@ TEST(Limits, UnitSlipsAreRefused) {
 
 TEST(Limits, EstimateAgainstMaxPlunges) {
   PlanInput in = benchmark();  // 600 x 400 mm less four 60 mm islands, smallest tool 5 mm
-  const double area = 600.0 * 400 - 4 * M_PI * 30 * 30;
-  EXPECT_NEAR(estimatedPlunges(in), area / (M_PI * 2.5 * 2.5), 0.01 * area / (M_PI * 2.5 * 2.5));
+  const double area = 600.0 * 400 - 4 * kPi * 30 * 30;
+  EXPECT_NEAR(estimatedPlunges(in), area / (kPi * 2.5 * 2.5), 0.01 * area / (kPi * 2.5 * 2.5));
   in.maxPlunges = 0.9 * estimatedPlunges(in);
   EXPECT_TRUE(has(planError(in), "more than max_plunges")) << planError(in);
   in.maxPlunges = 0.5;

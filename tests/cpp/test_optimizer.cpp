@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "plunge/error.hpp"
+#include "plunge/geometry.hpp"
 #include "plunge/optimizer.hpp"
 
 using namespace plunge;
@@ -54,13 +55,13 @@ TEST(Optimizer, RosenbrockOnABox) {
 }
 
 TEST(Optimizer, RastriginOneAndTwoVariables) {
-  const auto r1 = optimize1([](double x) { return 10 + x * x - 10 * std::cos(2 * M_PI * x); }, -5.12, 5.12,
+  const auto r1 = optimize1([](double x) { return 10 + x * x - 10 * std::cos(2 * kPi * x); }, -5.12, 5.12,
                             Goal::Minimize);
   EXPECT_NEAR(r1.x[0], 0, 1e-6);
   EXPECT_NEAR(r1.value, 0, 1e-10);
   EXPECT_GE(r1.locals.size(), 10u);  // many local minima, all found
   const auto r2 = optimize2(
-      [](double x, double y) { return 20 + x * x + y * y - 10 * (std::cos(2 * M_PI * x) + std::cos(2 * M_PI * y)); },
+      [](double x, double y) { return 20 + x * x + y * y - 10 * (std::cos(2 * kPi * x) + std::cos(2 * kPi * y)); },
       {-5.12, 5.12}, {-5.12, 5.12}, Goal::Minimize);
   EXPECT_NEAR(r2.x[0], 0, 1e-6);
   EXPECT_NEAR(r2.x[1], 0, 1e-6);
@@ -93,15 +94,15 @@ TEST(Optimizer, ThesisCase483) {
                            {-2, 2}, Goal::Maximize);
   EXPECT_NEAR(r.value, 2, 1e-12);
   // cos(3x + 3.15) = 1 at x = (2 pi k - 3.15) / 3, sin(y + 3.15) = 1 at y = pi / 2 - 3.15.
-  EXPECT_TRUE(hasLocal(r, {-3.15 / 3, M_PI / 2 - 3.15}));
-  EXPECT_TRUE(hasLocal(r, {(2 * M_PI - 3.15) / 3, M_PI / 2 - 3.15}));
+  EXPECT_TRUE(hasLocal(r, {-3.15 / 3, kPi / 2 - 3.15}));
+  EXPECT_TRUE(hasLocal(r, {(2 * kPi - 3.15) / 3, kPi / 2 - 3.15}));
   int twos = 0;
   for (const auto& o : r.locals) twos += std::fabs(o.value - 2) < 1e-9;
   EXPECT_EQ(twos, 2);
 }
 
 TEST(Optimizer, PeriodicVariable) {
-  const auto r = optimize1([](double t) { return std::cos(t - 6.2); }, 0, 2 * M_PI, Goal::Maximize,
+  const auto r = optimize1([](double t) { return std::cos(t - 6.2); }, 0, 2 * kPi, Goal::Maximize,
                            [] { OptimizeOptions o; o.periodic = true; return o; }());
   EXPECT_NEAR(r.x[0], 6.2, 1e-7);
   EXPECT_NEAR(r.value, 1, 1e-12);

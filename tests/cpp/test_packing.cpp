@@ -35,7 +35,7 @@ TEST(CornerPlacement, TwoWallsMatchTheThesisOffsetPoint) {
   // Eqs. 4.18-4.26: the offset point lies on the bisector at r / sin(theta / 2),
   // theta being the corner's interior angle.
   for (double deg : {30.0, 60.0, 90.0, 120.0, 150.0}) {
-    const double th = deg * M_PI / 180;
+    const double th = deg * kPi / 180;
     const Vec2 v{0, 0};
     const Segment in{{std::cos(th) * 50, std::sin(th) * 50}, v};  // arrives at v
     const Segment out{v, {50, 0}};

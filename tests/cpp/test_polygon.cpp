@@ -10,8 +10,8 @@ TEST(Polygon, AreaOffsetBooleans) {
   EXPECT_NEAR(poly::area(poly::offset(sq, -1)), 64, 1e-6);
   // Round outward offset: 100 + 4*10*1 + pi*1^2, chords slightly inside the arcs.
   const double grown = poly::area(poly::offset(sq, 1));
-  EXPECT_LT(grown, 140 + M_PI);
-  EXPECT_GT(grown, 140 + M_PI - 0.01);
+  EXPECT_LT(grown, 140 + kPi);
+  EXPECT_GT(grown, 140 + kPi - 0.01);
   const Polygons other{{{5, 5}, {15, 5}, {15, 15}, {5, 15}}};
   EXPECT_NEAR(poly::area(poly::unite(sq, other)), 175, 1e-6);
   EXPECT_NEAR(poly::area(poly::intersect(sq, other)), 25, 1e-6);
@@ -27,8 +27,8 @@ TEST(Polygon, DiskIsInscribedWithinChordError) {
     minR = std::min(minR, dist(p, c.c));
   }
   EXPECT_GT(minR, c.r - 1e-5);
-  EXPECT_LT(poly::area({d}), M_PI * 49);
-  EXPECT_GT(poly::area({d}), M_PI * 49 - 2 * M_PI * 7 * 0.002);
+  EXPECT_LT(poly::area({d}), kPi * 49);
+  EXPECT_GT(poly::area({d}), kPi * 49 - 2 * kPi * 7 * 0.002);
 }
 
 TEST(Polygon, ComponentsKeepTheirHoles) {

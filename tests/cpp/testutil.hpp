@@ -20,7 +20,7 @@ inline Loop randomStar(std::mt19937& rng, Vec2 c, double r0, double r1, int n) {
   std::uniform_real_distribution<double> rad(r0, r1), jitter(-0.3, 0.3);
   Loop out;
   for (int i = 0; i < n; ++i) {
-    const double a = 2 * M_PI * (i + 0.5 + jitter(rng)) / n;
+    const double a = 2 * kPi * (i + 0.5 + jitter(rng)) / n;
     const double r = rad(rng);
     out.push_back({c.x + r * std::cos(a), c.y + r * std::sin(a)});
   }
@@ -29,7 +29,7 @@ inline Loop randomStar(std::mt19937& rng, Vec2 c, double r0, double r1, int n) {
 
 inline Loop circleLoop(Vec2 c, double r, int n) {
   Loop out;
-  for (int i = 0; i < n; ++i) out.push_back({c.x + r * std::cos(2 * M_PI * i / n), c.y + r * std::sin(2 * M_PI * i / n)});
+  for (int i = 0; i < n; ++i) out.push_back({c.x + r * std::cos(2 * kPi * i / n), c.y + r * std::sin(2 * kPi * i / n)});
   return out;
 }
 
