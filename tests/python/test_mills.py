@@ -147,10 +147,11 @@ SHAPES = os.path.join(os.path.dirname(__file__), "..", "data", "shapes")
 
 
 @pytest.mark.parametrize("shape", ["convex", "concave", "islands", "freeform", "neck"])
-def test_limited_plans_stay_near_the_row_bound_and_lead_out(cli, tmp_path, shape):
+def test_limited_plans_stay_near_the_row_bound_travel_little_and_lead_out(cli, tmp_path, shape):
     """A band limit e costs about area / (0.87 D e) plunges (rows 0.87 D apart,
     a plunge every e along them): the plan stays within 1.3 times that (or of
-    the unlimited plan, where that is more), and nearly every plunge leads out."""
+    the unlimited plan, where that is more), travels at most 1.5 times as far
+    per plunge as the unlimited plan, and nearly every plunge leads out."""
     data = json.load(open(os.path.join(SHAPES, shape + ".json")))
     free, _ = post(cli, data, tmp_path)
     largest = max(t["diameter"] for t in data["tools"])
@@ -159,6 +160,10 @@ def test_limited_plans_stay_near_the_row_bound_and_lead_out(cli, tmp_path, shape
         stats = plan["stats"]
         bound = max(free["stats"]["plunge_count"], stats["region_area"] / (0.87 * largest * fraction * largest))
         assert stats["plunge_count"] <= 1.3 * bound, (kind, stats["plunge_count"], bound)
+        # The tour: rows walked in turn, one piece of the region after another.
+        per_plunge = stats["travel_length"] / (stats["plunge_count"] - 1)
+        free_per_plunge = free["stats"]["travel_length"] / (free["stats"]["plunge_count"] - 1)
+        assert per_plunge <= 1.5 * free_per_plunge, (kind, per_plunge, free_per_plunge)
         plunges = plan["plunges"]
         with_lead_out = sum("lead_out" in p for p in plunges)
         assert with_lead_out == stats["lead_outs"]
