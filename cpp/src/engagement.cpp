@@ -46,6 +46,12 @@ constexpr double kCentreMargin = 0.05;
 // refined where curved walls leave more than this.
 constexpr double kWallBand = 0.9;
 
+// A grid cell's key. Unsigned: shifting a negative cell index left is undefined.
+long long pack(long i, long j) {
+  const unsigned long long hi = static_cast<unsigned long long>(i) << 32;
+  return static_cast<long long>(hi ^ (static_cast<unsigned long long>(j) & 0xffffffffULL));
+}
+
 // The material a tool must clear: points sampled on the height field's raster
 // inside its planned disks, each with the height the planned plunges cut it to.
 class Targets {
@@ -146,11 +152,6 @@ class Targets {
     bool done;
     bool deferred = false;
   };
-  // Unsigned: shifting a negative cell index left is undefined.
-  static long long pack(long i, long j) {
-    const unsigned long long hi = static_cast<unsigned long long>(i) << 32;
-    return static_cast<long long>(hi ^ (static_cast<unsigned long long>(j) & 0xffffffffULL));
-  }
   long long key(Vec2 p) const {
     return pack(static_cast<long>(std::floor(p.x / bucket_)), static_cast<long>(std::floor(p.y / bucket_)));
   }
@@ -530,12 +531,8 @@ class Grower {
     // Positions by cell, to forget the verdicts a new plunge may change.
     const double cell = 2 * r + e + 2 * h;
     std::unordered_map<long long, std::vector<size_t>> near;
-    auto cellKey = [&](long i, long j) {
-      return static_cast<long long>((static_cast<unsigned long long>(i) << 32) ^
-                                    (static_cast<unsigned long long>(j) & 0xffffffffULL));
-    };
     for (size_t k = 0; k < pos.size(); ++k)
-      near[cellKey(static_cast<long>(std::floor(pos[k].c.x / cell)), static_cast<long>(std::floor(pos[k].c.y / cell)))]
+      near[pack(static_cast<long>(std::floor(pos[k].c.x / cell)), static_cast<long>(std::floor(pos[k].c.y / cell)))]
           .push_back(k);
     auto zOf = [&](Pos& p) {
       if (!p.zKnown) {
@@ -577,7 +574,7 @@ class Grower {
       const long ci = static_cast<long>(std::floor(at.x / cell)), cj = static_cast<long>(std::floor(at.y / cell));
       for (long j = cj - 1; j <= cj + 1; ++j)
         for (long i = ci - 1; i <= ci + 1; ++i) {
-          auto it = near.find(cellKey(i, j));
+          auto it = near.find(pack(i, j));
           if (it == near.end()) continue;
           for (size_t q : it->second)
             if (pos[q].open && !pos[q].skip) pos[q].known = false;

@@ -55,29 +55,14 @@ double HeightField::highestAlong(Vec2 a, Vec2 b, double r) const {
 
 int HeightField::materialCells(Vec2 c, const Cutter& cutter, double z, double margin) const {
   int n = 0;
-  const double r = cutter.radius + margin;
-  const long i0 = static_cast<long>(std::floor((c.x - r - lo_.x) / h_));
-  const long j0 = static_cast<long>(std::floor((c.y - r - lo_.y) / h_));
-  const long m = static_cast<long>(std::ceil(2 * r / h_)) + 1;
-  for (long j = j0; j <= j0 + m; ++j)
-    for (long i = i0; i <= i0 + m; ++i)
-      if (const double rho = dist(centre(i, j), c);
-          rho <= r && at(i, j) > z + cutterProfile(cutter, rho) + kEngagementSkin)
-        ++n;
+  forEachMaterialCell(c, cutter, z, margin, [&](Vec2) { ++n; });
   return n;
 }
 
 double HeightField::bite(Vec2 from, Vec2 c, const Cutter& cutter, double z, double margin) const {
   double deepest = -1.0;
-  const double r = cutter.radius + margin;
-  const long i0 = static_cast<long>(std::floor((c.x - r - lo_.x) / h_));
-  const long j0 = static_cast<long>(std::floor((c.y - r - lo_.y) / h_));
-  const long m = static_cast<long>(std::ceil(2 * r / h_)) + 1;
-  for (long j = j0; j <= j0 + m; ++j)
-    for (long i = i0; i <= i0 + m; ++i)
-      if (const double rho = dist(centre(i, j), c);
-          rho <= r && at(i, j) > z + cutterProfile(cutter, rho) + kEngagementSkin)
-        deepest = std::max(deepest, dist(centre(i, j), from) - cutter.radius);
+  forEachMaterialCell(c, cutter, z, margin,
+                      [&](Vec2 q) { deepest = std::max(deepest, dist(q, from) - cutter.radius); });
   return deepest;
 }
 

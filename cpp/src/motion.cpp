@@ -54,17 +54,10 @@ class Touched {
   // between `from` and `to` away from c, nearest first (at most `count`).
   std::vector<Vec2> holesNear(Vec2 c, double r, double bottom, double from, double to, size_t count) const {
     std::vector<std::pair<double, Vec2>> found;
-    for (long j = cellOf(c.y - to) - 1; j <= cellOf(c.y + to) + 1; ++j)
-      for (long i = cellOf(c.x - to) - 1; i <= cellOf(c.x + to) + 1; ++i) {
-        auto it = grid_.find(key(i, j));
-        if (it == grid_.end()) continue;
-        for (size_t k : it->second) {
-          const Disk& d = disks_[k];
-          const double l = dist(d.circle.c, c);
-          if (l >= from && l <= to && d.circle.r >= r - 1e-9 && d.bottom <= bottom + 1e-9)
-            found.push_back({l, d.circle.c});
-        }
-      }
+    forEachDiskNear(c, to, [&](const Disk& d) {
+      const double l = dist(d.circle.c, c);
+      if (l >= from && l <= to && d.circle.r >= r - 1e-9 && d.bottom <= bottom + 1e-9) found.push_back({l, d.circle.c});
+    });
     std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     std::vector<Vec2> out;
     for (size_t k = 0; k < found.size() && k < count; ++k) out.push_back(found[k].second);
@@ -76,15 +69,9 @@ class Touched {
   double bite(Vec2 c, Vec2 end, double r, double bottom) const {
     std::vector<Circle> cut;
     const double reach = 2 * r + dist(c, end);
-    for (long j = cellOf(end.y - reach) - 1; j <= cellOf(end.y + reach) + 1; ++j)
-      for (long i = cellOf(end.x - reach) - 1; i <= cellOf(end.x + reach) + 1; ++i) {
-        auto it = grid_.find(key(i, j));
-        if (it == grid_.end()) continue;
-        for (size_t k : it->second) {
-          const Disk& d = disks_[k];
-          if (d.bottom <= bottom + 1e-9 && dist(d.circle.c, end) < d.circle.r + r) cut.push_back(d.circle);
-        }
-      }
+    forEachDiskNear(end, reach, [&](const Disk& d) {
+      if (d.bottom <= bottom + 1e-9 && dist(d.circle.c, end) < d.circle.r + r) cut.push_back(d.circle);
+    });
     double deepest = -1.0;
     for (const Loop& l : poly::subtract({poly::disk({end, r - 0.01})}, poly::unionOfDisks(cut)))
       for (Vec2 v : l) deepest = std::max(deepest, dist(v, c) - r);
@@ -121,6 +108,17 @@ class Touched {
   }
 
  private:
+  // Calls f(disk) for each disk in the grid cells within `reach` of c (and one
+  // cell beyond): the candidates a query then tests exactly.
+  template <class F>
+  void forEachDiskNear(Vec2 c, double reach, F f) const {
+    for (long j = cellOf(c.y - reach) - 1; j <= cellOf(c.y + reach) + 1; ++j)
+      for (long i = cellOf(c.x - reach) - 1; i <= cellOf(c.x + reach) + 1; ++i) {
+        auto it = grid_.find(key(i, j));
+        if (it == grid_.end()) continue;
+        for (size_t k : it->second) f(disks_[k]);
+      }
+  }
   // A point of the swept disk (radius rs) at least kWitness inside it and
   // kWitness outside every near disk proves an uncovered piece of pi kWitness^2
   // (more than the polygon test's 1e-4 mm^2): the common case (a move over

@@ -61,6 +61,20 @@ class HeightField {
   double topZ() const { return top_; }
 
  private:
+  // Calls f(cell centre) for each cell of material (beyond the skin) under a
+  // cutter at c with its tip at z, counting cells up to `margin` beyond its radius.
+  template <class F>
+  void forEachMaterialCell(Vec2 c, const Cutter& cutter, double z, double margin, F f) const {
+    const double r = cutter.radius + margin;
+    const long i0 = static_cast<long>(std::floor((c.x - r - lo_.x) / h_));
+    const long j0 = static_cast<long>(std::floor((c.y - r - lo_.y) / h_));
+    const long m = static_cast<long>(std::ceil(2 * r / h_)) + 1;
+    for (long j = j0; j <= j0 + m; ++j)
+      for (long i = i0; i <= i0 + m; ++i)
+        if (const double rho = dist(centre(i, j), c);
+            rho <= r && at(i, j) > z + cutterProfile(cutter, rho) + kEngagementSkin)
+          f(centre(i, j));
+  }
   bool index(Vec2 p, long& i, long& j) const;
   double at(long i, long j) const;
   Vec2 centre(long i, long j) const { return {lo_.x + (i + 0.5) * h_, lo_.y + (j + 0.5) * h_}; }
