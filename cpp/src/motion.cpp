@@ -243,11 +243,12 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
   struct End {
     Vec2 at;
     double room;
+    bool towardHole;
   };
   std::vector<End> ends;
-  auto add = [&](Vec2 d) {
+  auto add = [&](Vec2 d, bool towardHole) {
     const Vec2 end = c + d * (in.leadOut / norm(d));
-    ends.push_back({end, region.wallDistance(end, 4 * cutter.radius)});
+    ends.push_back({end, region.wallDistance(end, 4 * cutter.radius), towardHole});
   };
   // Toward holes cut before, as wide and as deep, d from this one (the
   // plunge before first): the moved disk lies in the two holes but where it
@@ -261,31 +262,16 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
       holes.push_back({back->x, back->y});
     for (Vec2 h : touched.holesNear(c, r, p.z + cutterProfile(cutter, r), L, reach, 8)) holes.push_back(h);
   }
-  const size_t nHoles = holes.size();
-  for (Vec2 h : holes) add(h - c);
-  for (int d = 0; d < 16; ++d) add({std::cos(2 * kPi * d / 16), std::sin(2 * kPi * d / 16)});
+  for (Vec2 h : holes) add(h - c, true);
+  for (int d = 0; d < 16; ++d) add({std::cos(2 * kPi * d / 16), std::sin(2 * kPi * d / 16)}, false);
   // Beside the way to a hole (a contour along a wall that bulges in: the
   // straight way back comes too near the wall), measured with polygons below.
   for (Vec2 h : holes)
     for (double turn : {-20.0, 20.0, -40.0, 40.0}) {
       const double a = std::atan2(h.y - c.y, h.x - c.x) + turn * kPi / 180;
-      add({std::cos(a), std::sin(a)});
+      add({std::cos(a), std::sin(a)}, false);
     }
-  std::vector<bool> towardHole(ends.size(), false);
-  for (size_t k = 0; k < nHoles; ++k) towardHole[k] = true;
-  std::vector<size_t> rank(ends.size());
-  for (size_t k = 0; k < rank.size(); ++k) rank[k] = k;
-  std::stable_sort(rank.begin(), rank.end(), [&](size_t a, size_t b) { return ends[a].room > ends[b].room + 1e-9; });
-  {
-    std::vector<End> sorted;
-    std::vector<bool> hole;
-    for (size_t k : rank) {
-      sorted.push_back(ends[k]);
-      hole.push_back(towardHole[k]);
-    }
-    ends = std::move(sorted);
-    towardHole = std::move(hole);
-  }
+  std::stable_sort(ends.begin(), ends.end(), [](const End& a, const End& b) { return a.room > b.room + 1e-9; });
   const int samples = std::max(2, static_cast<int>(std::ceil(in.leadOut / (0.25 * cutter.radius))));
   // Walls and islands (never nearer than the allowance), then the floor under
   // the moving tool (a depth optimization per sample on sculptured floors).
@@ -319,11 +305,11 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
     if (fitsAt(k)) return end;
   }
   for (size_t k = 0; k < ends.size(); ++k)
-    if (towardHole[k] && fitsAt(k)) return ends[k].at;
+    if (ends[k].towardHole && fitsAt(k)) return ends[k].at;
   // Else any direction whose disk the holes cut so far (as deep) leave to
   // graze less than half the lead-out, measured exactly with their polygons.
   for (size_t k = 0; k < ends.size(); ++k)
-    if (!towardHole[k] && stock.bite(c, ends[k].at, cutter, p.z) <= 0.5 * L &&
+    if (!ends[k].towardHole && stock.bite(c, ends[k].at, cutter, p.z) <= 0.5 * L &&
         touched.bite(c, ends[k].at, r, p.z + cutterProfile(cutter, r)) <= 0.5 * L && fitsAt(k))
       return ends[k].at;
   bool room = false;
