@@ -250,8 +250,10 @@ def example_document():
     name = compat.voxel_simulator_command()
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.runCommand(name)
-    wait(2)
     mw = FreeCADGui.getMainWindow()
+    # The panel comes once the simulator has built its stock: seconds on a busy machine.
+    wait(30, lambda: mw.findChild(QtGui.QToolButton, "toolButtonFF") is not None)
+    wait(0.5)
     mw.findChild(QtGui.QToolButton, "toolButtonFF").click()
     play = mw.findChild(QtGui.QToolButton, "toolButtonPlay")
     wait(1)
