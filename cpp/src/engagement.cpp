@@ -45,6 +45,9 @@ constexpr double kCentreMargin = 0.05;
 // max_wall_stock: the contour is spaced for 0.8 of it on straight walls and
 // refined where curved walls leave more than this.
 constexpr double kWallBand = 0.9;
+// The floor stock a limited tool leaves to the finishing pass, as a share of
+// max_floor_stock (the raster's heights and the stock samples' differ a little).
+constexpr double kFloorBand = 0.9;
 
 // A grid cell's key. Unsigned: shifting a negative cell index left is undefined.
 long long pack(long i, long j) {
@@ -443,6 +446,7 @@ class Grower {
     Vec2 at = order_.empty() ? (in_.start ? *in_.start : region_.loops()[0].front())
                              : Vec2{order_.back().x, order_.back().y};
     growAlongPaths(tool, cutter, centres, targets, minGain, at);
+    forgetFloorStock(targets);
     int stalls = 0;  // rounds that cut no target point (a guard: each round should)
     while (targets.left() > 0 && stalls < 3) {
       progress_.tick();
@@ -483,6 +487,26 @@ class Grower {
       stalls = targets.left() < before ? 0 : stalls + 1;
     }
     finishSlivers(tool, cutter, planned, targets);
+  }
+
+  // Over a sculptured floor the paths' plunges stop at their own heights, a
+  // little above the planned ones in places. What they leave within the floor
+  // stock limit (max_floor_stock, kFloorBand of it) is the floor's stock, as
+  // in the rest step (stock.hpp), not a target: a plunge for it would cut a
+  // sliver of a few tenths (the planned rest plunges, where it is thicker,
+  // stay targets).
+  void forgetFloorStock(Targets& targets) const {
+    if (!(in_.maxFloorStock > 0) || !sculptured()) return;
+    const FloorSurface& floor = depths_.floor();
+    const double keep = in_.floorAllowance + kFloorBand * in_.maxFloorStock;
+    targets.forget([&](Vec2 q) {
+      const double f = floor.height(q);
+      return std::isfinite(f) && stock_.heightAt(q) <= f + keep;
+    });
+  }
+  bool sculptured() const {
+    return !depths_.floor().isFlat() ||
+           std::any_of(in_.tools.begin(), in_.tools.end(), [](const Tool& t) { return t.shape != CutterShape::Flat; });
   }
 
   // Grows along the contour and rows (growthPaths): each path is entered next
