@@ -18,7 +18,7 @@ import FreeCAD
 import Part
 from PySide.QtCore import QT_TRANSLATE_NOOP
 
-from freecad_plugin import compat, generator, geometry
+from freecad_plugin import companions, compat, geometry, planner
 from freecad_plugin.compat import PathFeedRate, PathJob, PathOp, PathUtils
 
 __title__ = "Plunge Rough operation"
@@ -49,9 +49,7 @@ def _report(obj, message):
     plunges after it) until the operation plans again."""
     FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, message))
     obj.Summary = message
-    for comp in companions(obj):
-        if comp.Active:
-            comp.Active = False
+    companions.deactivate(obj)
 
 
 PLUNGER_SHAPES = ("endmill", "ballend", "bullnose", "plungemill")  # plungemill: plunge_mill.py
@@ -72,15 +70,6 @@ def is_plunger(tc):
 def job_plungers(job):
     """The plunger tool controllers of a Job, largest first."""
     tcs = [tc for tc in (job.Tools.Group if job is not None else []) if is_plunger(tc)]
-    return sorted(tcs, key=lambda tc: -float(tc.Tool.Diameter))
-
-
-def _tool_controllers(obj):
-    """The plunger tool controllers, largest first (the op's own one if none is listed)."""
-    tcs = []
-    for tc in list(obj.ToolControllers) or ([obj.ToolController] if obj.ToolController else []):
-        if tc is not None and tc not in tcs:
-            tcs.append(tc)
     return sorted(tcs, key=lambda tc: -float(tc.Tool.Diameter))
 
 
@@ -174,8 +163,8 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         # Files from older versions lack newer properties, and their companions
         # have labels with parentheses (nested comments in G-code).
         self._addProperties(obj)
-        for comp in companions(obj):
-            label = companion_label(obj, comp.ToolController, bool(getattr(comp, "StartHoles", False)))
+        for comp in companions.companions(obj):
+            label = companions.companion_label(obj, comp.ToolController, bool(getattr(comp, "StartHoles", False)))
             if comp.ToolController is not None and comp.Label != label:
                 comp.Label = label
 
@@ -188,7 +177,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
             obj.ToolControllers = plungers
         elif obj.ToolController and not obj.ToolControllers:
             obj.ToolControllers = [obj.ToolController]
-        syncCompanions(obj)  # the proxy is not attached yet: opOnChanged does not run
+        companions.syncCompanions(obj)  # the proxy is not attached yet: opOnChanged does not run
 
     def opUpdateDepths(self, obj):
         # FreeCAD takes the highest of the selected faces' bottoms; a pocket with
@@ -205,24 +194,24 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         # restore the companions themselves.
         settled = "Restore" not in obj.State and not obj.Document.Transacting
         if prop == "ToolControllers" and settled and hasattr(obj, "PlanData"):
-            syncCompanions(obj)
+            companions.syncCompanions(obj)
         if prop == "Active" and settled:
-            for comp in companions(obj):  # the plan's other tools follow the operation
+            for comp in companions.companions(obj):  # the plan's other tools follow the operation
                 if not obj.Active and comp.Active:
                     comp.Active = False
                 elif obj.Active and not comp.Active and not obj.AutoSelectTools:
                     comp.Active = True
         if prop == "AutoSelectTools" and "Restore" not in obj.State and not obj.AutoSelectTools:
-            tcs = _tool_controllers(obj)
+            tcs = companions.tool_controllers(obj)
             if tcs and obj.ToolController != tcs[0]:  # the largest plunger again
                 obj.ToolController = tcs[0]
-            for comp in companions(obj):  # every plunger works again
+            for comp in companions.companions(obj):  # every plunger works again
                 if not comp.Active:
                     comp.Active = True
 
     def opExecute(self, obj):
         obj.PlanData = ""
-        tcs = _tool_controllers(obj)
+        tcs = companions.tool_controllers(obj)
         try:
             faces = selected_faces(obj, tcs)
         except ValueError as e:
@@ -235,26 +224,27 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         notes = []
         try:
             data = build_input(obj, tcs, faces, workdir, notes)
-            progress = PlanProgress(obj.Label)
+            progress = planner.PlanProgress(obj.Label)
             try:
-                plan = planner().plan(data, svg=True, progress=progress)
+                plan = planner.planner().plan(data, svg=True, progress=progress)
             finally:
                 progress.stop()
         except ValueError as e:
             _report(obj, str(e))
             return
-        except _ABORT:  # FreeCAD's progress indicator: the user aborted (Esc)
+        except planner.ABORT:  # FreeCAD's progress indicator: the user aborted (Esc)
             _report(obj, translate("PlungeRough", "planning cancelled"))
             return
         with open(os.path.join(workdir, "plan.svg"), "w") as f:
             f.write(plan.pop("svg"))
         obj.PlanData = json.dumps({"input": data, "plan": plan})
         report_plan(obj, plan, notes)
-        own_tc = activate_companions(obj, plan, tcs)
+        own_tc, problem = companions.activate_companions(obj, plan, tcs)
         if own_tc is None:
+            _report(obj, problem)
             obj.PlanData = ""
             return
-        self.commandlist.extend(toolCommands(obj, plunges_of_tool(plan, own_tc)))
+        self.commandlist.extend(companions.toolCommands(obj, companions.plunges_of_tool(plan, own_tc)))
         PathFeedRate.setFeedRate(self.commandlist, own_tc)
 
 
@@ -280,7 +270,7 @@ def selected_faces(obj, tcs):
         raise ValueError(translate("PlungeRough", "two plunger tool controllers have the same diameter"))
     # Each further plunger cuts through its companion operation: without it
     # its plunges would silently be missing from the simulation and G-code.
-    have = {comp.ToolController for comp in companions(obj)}
+    have = {comp.ToolController for comp in companions.companions(obj)}
     missing = [tc for tc in tcs[1:] if tc not in have]
     if missing:
         raise ValueError(translate("PlungeRough", "the operation of plunger %s was deleted, so its plunges would "
@@ -369,72 +359,17 @@ def report_plan(obj, plan, notes=()):
     post_warning = canned_cycle_warning(obj)
     if post_warning:
         warnings.append(post_warning)
-    obj.Summary = "; ".join([summary(dict(plan, warnings=warnings))] + list(notes))
+    text = plan["summary"]  # the planner's own words (the CLI's summary)
+    selection = plan.get("tool_selection")
+    if selection:
+        text += "; plungers chosen: %s of %s" % ("/".join("%g" % d for d in selection["chosen"]),
+                                                 "/".join("%g" % d for d in selection["candidates"]))
+    obj.Summary = "; ".join([text] + warnings + list(notes))
+    FreeCAD.Console.PrintMessage("%s: %s\n" % (obj.Label, text))
     for note in notes:
         FreeCAD.Console.PrintMessage("%s: %s\n" % (obj.Label, note))
-    FreeCAD.Console.PrintMessage("%s: %s\n" % (obj.Label, stock_report(plan["stats"])))
     for warning in warnings:
         FreeCAD.Console.PrintWarning("%s: %s\n" % (obj.Label, warning))
-
-
-def activate_companions(obj, plan, tcs):
-    """The tool controller the operation itself cuts with; the companions that
-    have plunges to make active, the others idle (so the post writes no tool
-    change without plunges after it). None after reporting a plan that drills
-    start holes no companion makes."""
-    used = {p["tool_id"] for p in plan["plunges"]}
-    own_tc = tcs[0]
-    # Automatic choice: this operation cuts with the largest plunger the plan uses.
-    if obj.AutoSelectTools:
-        own_tc = next((tc for tc in tcs if int(tc.ToolNumber) in used), tcs[0])
-        if obj.ToolController != own_tc:
-            obj.ToolController = own_tc
-    # Start holes: every one is drilled by its companion, placed before this operation.
-    drilling = {p["tool_id"] for p in plan["plunges"] if p.get("start_hole")}
-    holes_by = {int(c.ToolController.ToolNumber) for c in companions(obj) if getattr(c, "StartHoles", False)}
-    if drilling - holes_by:
-        _report(obj, translate("PlungeRough", "the plan drills start holes with T%s, which has no start hole "
-                               "operation: tick the plungers again") % ", T".join(str(t) for t in drilling - holes_by))
-        return None
-    for comp in companions(obj):
-        if getattr(comp, "StartHoles", False):
-            active = int(comp.ToolController.ToolNumber) in drilling
-        else:
-            active = not obj.AutoSelectTools or (int(comp.ToolController.ToolNumber) in used
-                                                 and comp.ToolController != own_tc)
-        if comp.Active != active:
-            comp.Active = active
-    return own_tc
-
-
-# What FreeCAD's progress indicator raises when the user aborts (not an Exception).
-_ABORT = getattr(FreeCAD.Base, "FreeCADAbort", KeyboardInterrupt)
-
-
-class PlanProgress:
-    """The planner's progress in FreeCAD's progress indicator (the GUI's status
-    bar, which keeps the GUI drawn while planning; Esc there asks whether to
-    abort, and aborting cancels the plan)."""
-
-    def __init__(self, label):
-        self.label = label
-        self.stage = None
-        self.indicator = FreeCAD.Base.ProgressIndicator()
-        self.running = False
-
-    def __call__(self, fraction, stage):
-        if stage != self.stage:  # one busy indicator per stage, named by it
-            self.stop()
-            self.indicator.start("%s: %s (%d %%)" % (self.label, stage, round(100 * fraction)), 0)
-            self.running = True
-            self.stage = stage
-        self.indicator.next(True)  # raises when the user aborts
-        return True
-
-    def stop(self):
-        if self.running:
-            self.indicator.stop()
-            self.running = False
 
 
 def canned_cycle_warning(obj):
@@ -451,28 +386,6 @@ def canned_cycle_warning(obj):
     return None
 
 
-def planner():
-    """The core planner (the compiled `plunge` module beside the addon)."""
-    try:
-        import plunge
-    except ImportError as e:
-        raise ValueError("the planner module is not installed (%s); run the README's main command" % e)
-    return plunge
-
-
-def plunges_of_tool(plan, tc, start_holes=False):
-    """The plan's plunges made by the tool controller's tool, in order: its start
-    holes for non-centre-cutting plungers, or its own plunges."""
-    number = int(tc.ToolNumber)
-    return [p for p in plan["plunges"] if p["tool_id"] == number and bool(p.get("start_hole")) == start_holes]
-
-
-def toolCommands(op, plunges):
-    """One tool's plunges as Path commands, with the main operation's heights and cycle."""
-    return generator.generate(plunges, op.ClearanceHeight.Value, op.SafeHeight.Value, op.UseCannedCycle,
-                              op.PeckDepth.Value)
-
-
 def time_model(tc):
     """The planner's time model from a tool controller's rapid rates (defaults when unset)."""
     model = {}
@@ -483,159 +396,15 @@ def time_model(tc):
     return model
 
 
-def stock_report(s):
-    """What the plan leaves for the finisher: wall band, floor stock, volumes."""
-    text = "stock left: walls up to %.2f mm (%.2f %% of the core cut), floor up to %.2f mm (mean %.2f mm)" % (
-        s["max_wall_stock_left"], 100 * s["core_coverage"], s["max_floor_stock_left"], s["mean_floor_stock"])
-    text += "; %.1f cm3 removed, %.1f cm3 left" % (s["volume_removed"] / 1000, s["volume_left"] / 1000)
-    if s["rest_plunges"]:
-        text += "; %d plunges added for the floor stock" % s["rest_plunges"]
-    return text
-
-
-def summary(plan):
-    """Plunges per tool, coverage, travel, the planner's time estimate and the stock left."""
-    s = plan["stats"]
-    parts = ["T%d %g mm: %d" % (t["tool_id"], t["diameter"], t["count"]) for t in s["per_tool"]]
-    text = "%d plunges (%s), coverage %.2f %%, travel %.0f mm, about %.0f min; %s" % (
-        s["plunge_count"], ", ".join(parts), 100 * s["coverage"], s["travel_length"], s["estimated_minutes"],
-        stock_report(s))
-    if s.get("start_holes"):
-        text += "; %d start holes" % s["start_holes"]
-    if s.get("levels", 1) > 1:
-        text += "; %d levels (flute length)" % s["levels"]
-    saved = s.get("minutes_at_safe_height", 0.0) - s["estimated_minutes"]
-    if saved > 0.05:
-        text += "; %.1f min saved by stock-aware heights" % saved
-    if plan.get("warnings"):
-        text += "; " + "; ".join(plan["warnings"])
-    selection = plan.get("tool_selection")
-    if selection:
-        text += "; plungers chosen: %s of %s" % ("/".join("%g" % d for d in selection["chosen"]),
-                                                 "/".join("%g" % d for d in selection["candidates"]))
-    return text
-
-
-class ObjectPlungeRoughTool(PathOp.ObjectOp):
-    """Proxy of a companion operation: one more plunger's plunges of a Plunge Rough plan."""
-
-    def opFeatures(self, obj):
-        return PathOp.FeatureTool | PathOp.FeatureCoolant
-
-    def initOperation(self, obj):
-        if not hasattr(obj, "PlanOperation"):
-            obj.addProperty("App::PropertyLink", "PlanOperation", "Plunge Rough",
-                            QT_TRANSLATE_NOOP("App::Property", "The Plunge Rough operation whose plan this follows"))
-
-    def opExecute(self, obj):
-        main = obj.PlanOperation
-        plan = plan_of(main) if main is not None and main.Active else None
-        if plan is None:
-            return
-        plunges = plunges_of_tool(plan, obj.ToolController, bool(getattr(obj, "StartHoles", False)))
-        if obj.CoolantMode != main.CoolantMode:
-            obj.CoolantMode = main.CoolantMode
-        self.commandlist.extend(toolCommands(main, plunges))
-        PathFeedRate.setFeedRate(self.commandlist, obj.ToolController)
-
-
-def plan_of(obj):
-    """The last plan of a Plunge Rough operation (docs/plan-format.md, "Output"), or None."""
-    return json.loads(obj.PlanData)["plan"] if obj.PlanData else None
-
-
 def plan_picture(obj):
     """Path of the SVG picture of the operation's last plan."""
     return os.path.join(plan_folder(obj, create=False), "plan.svg")
 
 
-def companions(obj):
-    """The companion operations of a Plunge Rough operation."""
-    return [o for o in obj.InList if getattr(o, "PlanOperation", None) == obj]
-
-
-def companion_label(obj, tc, start_holes=False):
-    """"PlungeRough T3 12 mm": no parentheses, which the post would nest in comments."""
-    if tc is None:
-        return obj.Label + " plunger"
-    return "%s T%d %g mm%s" % (obj.Label, tc.ToolNumber, float(tc.Tool.Diameter),
-                               " start holes" if start_holes else "")
-
-
-def start_hole_tcs(tcs):
-    """The tool controllers that drill start holes, as the planner chooses them:
-    for each plunger that does not cut at its centre, the smallest centre-cutting
-    one at least as wide as its core."""
-    specs = {tc: geometry.tool_spec(tc) for tc in tcs}
-    drills = []
-    for tc, spec in specs.items():
-        if spec.get("center_cutting", True):
-            continue
-        able = [d for d, s in specs.items() if s.get("center_cutting", True) and s["diameter"] >= spec["core_diameter"]]
-        if able:
-            drill = min(able, key=lambda d: specs[d]["diameter"])
-            if drill not in drills:
-                drills.append(drill)
-    return drills
-
-
-def removeOrphans(doc):
-    """Removes companion operations whose Plunge Rough operation is gone or that
-    are in no Job (left by a cancelled task panel)."""
-    for o in list(doc.Objects):
-        if not isinstance(getattr(o, "Proxy", None), ObjectPlungeRoughTool):
-            continue
-        main = getattr(o, "PlanOperation", None)
-        if main is None or main.Document is not doc or o not in companions(main) or \
-                PathUtils.findParentJob(o) is None:
-            doc.removeObject(o.Name)
-
-
-def syncCompanions(obj):
-    """One companion per plunger besides the largest, ordered after obj by size."""
-    job = PathUtils.findParentJob(obj)
-    if job is None:
-        return
-    tcs = _tool_controllers(obj)
-    if not tcs:
-        return
-    if obj.ToolController != tcs[0]:
-        obj.ToolController = tcs[0]
-    existing = {(o.ToolController, bool(getattr(o, "StartHoles", False))): o for o in companions(obj)}
-    wanted, before = [], []
-    try:
-        drills = start_hole_tcs(tcs)
-    except ValueError:
-        drills = []  # a bad bit: the operation reports it when it plans
-    for tc, holes in [(d, True) for d in drills] + [(tc, False) for tc in tcs[1:]]:
-        comp = existing.pop((tc, holes), None)
-        if comp is None:
-            comp = obj.Document.addObject("Path::FeaturePython", obj.Name + ("_H" if holes else "_T"))
-            # Its settings are the Plunge Rough operation's, not the setup sheet's
-            # (which knows nothing of companions and would say so in the log).
-            comp.addProperty("App::PropertyBool", "DoNotSetDefaultValues", "Path")
-            comp.DoNotSetDefaultValues = True
-            comp.setEditorMode("DoNotSetDefaultValues", 2)
-            comp.Proxy = ObjectPlungeRoughTool(comp, "PlungeRoughTool", job)
-            comp.Active = True
-            comp.PlanOperation = obj
-            comp.ToolController = tc
-            if holes:
-                comp.addProperty("App::PropertyBool", "StartHoles", "Plunge Rough",
-                                 QT_TRANSLATE_NOOP("App::Property", "Drills the start holes of the plan"))
-                comp.StartHoles = True
-                comp.setEditorMode("StartHoles", 1)
-        comp.Label = companion_label(obj, tc, holes)
-        (before if holes else wanted).append(comp)
-    for stale in existing.values():
-        obj.Document.removeObject(stale.Name)
-    # Start holes are drilled before the operation's own plunges, the other
-    # plungers follow it.
-    group = [o for o in job.Operations.Group if o not in wanted and o not in before]
-    at = group.index(obj) if obj in group else len(group)
-    job.Operations.Group = group[:at] + before + group[at:at + 1] + wanted + group[at + 1:]
-    for comp in before + wanted:
-        comp.touch()
+# Files saved before the companions had their own module name this class as
+# freecad_plugin.PlungeRough.ObjectPlungeRoughTool; plan_of is the operation's.
+ObjectPlungeRoughTool = companions.ObjectPlungeRoughTool
+plan_of = companions.plan_of
 
 
 def register():

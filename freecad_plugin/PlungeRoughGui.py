@@ -11,7 +11,7 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
-from freecad_plugin import PlungeRough
+from freecad_plugin import PlungeRough, companions
 from freecad_plugin.command import ADDON, COMMAND, ICON, MENU_TEXT, TOOL_TIP
 from freecad_plugin import compat
 from freecad_plugin.compat import PathUtils, gui_modules, gui_util
@@ -157,7 +157,7 @@ class ViewProvider(PathOpGui.ViewProvider):
             # was open (ticked plungers) or of a removed new operation go too.
             this = ref()
             result = type(this).reject(this, resetEdit)
-            PlungeRough.removeOrphans(FreeCAD.ActiveDocument)
+            companions.removeOrphans(FreeCAD.ActiveDocument)
             return result
 
         panel.reject = rejectAndTidy
@@ -167,7 +167,7 @@ class ViewProvider(PathOpGui.ViewProvider):
 
     def onDelete(self, vobj, arg2=None):
         # The companion operations belong to this one.
-        for comp in PlungeRough.companions(vobj.Object):
+        for comp in companions.companions(vobj.Object):
             comp.Document.removeObject(comp.Name)
         return super().onDelete(vobj, arg2)
 
@@ -213,7 +213,7 @@ class CompanionViewProvider:
 
 
 def _adoptCompanions(obj):
-    for comp in PlungeRough.companions(obj):
+    for comp in companions.companions(obj):
         if comp.ViewObject and not isinstance(comp.ViewObject.Proxy, CompanionViewProvider):
             CompanionViewProvider(comp.ViewObject)
 

@@ -5,7 +5,10 @@
 #include <iostream>
 
 #include "plunge/error.hpp"
-#include "plunge/io.hpp"
+#include "plunge/gcode.hpp"
+#include "plunge/json.hpp"
+#include "plunge/summary.hpp"
+#include "plunge/svg.hpp"
 #include "plunge/plan.hpp"
 
 namespace {

@@ -9,7 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "plunge/error.hpp"
-#include "plunge/io.hpp"
+#include "plunge/json.hpp"
+#include "plunge/summary.hpp"
+#include "plunge/svg.hpp"
+#include "plunge/tools.hpp"
 #include "plunge/optimizer.hpp"
 #include "plunge/plan.hpp"
 #include "plunge/sequencing.hpp"
@@ -89,17 +92,28 @@ py::object planDict(const py::dict& input, bool svg, const py::object& progress)
   if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
     throw plunge::Error("progress: expected a callable (fraction, stage) or None");
   const plunge::Progress reporter = progressOf(progress);
-  std::string out, picture;
+  std::string out, picture, summary;
   {
     py::gil_scoped_release release;
     const plunge::PlanInput in = plunge::planInputFromJson(text);
     const plunge::Plan plan = plunge::plan(in, reporter);
     out = plunge::planToJson(plan);
+    summary = plunge::planSummary(plan);
     if (svg) picture = plunge::planToSvg(in, plan);
   }
   py::object result = fromJson(json::parse(out));
+  result["summary"] = py::str(summary);
   if (svg) result["svg"] = py::str(picture);
   return result;
+}
+
+// Each non-centre-cutting tool's start-hole drill (tools.hpp), by id.
+py::dict startHoleTools(const py::list& tools) {
+  const std::vector<plunge::Tool> ts = plunge::toolsFromJson(toJson(tools, "tools").dump());
+  py::dict out;
+  for (const plunge::Tool& t : ts)
+    if (!t.centerCutting) out[py::int_(t.id)] = py::int_(plunge::startHoleTool(ts, t).id);
+  return out;
 }
 
 std::vector<int> tourOf(const std::vector<std::pair<double, double>>& points, bool closed,
@@ -146,10 +160,14 @@ PYBIND11_MODULE(plunge, m) {
   py::register_exception<plunge::Error>(m, "PlanError", PyExc_ValueError);
   py::register_exception<plunge::InternalError>(m, "InternalError", PyExc_RuntimeError);
   m.def("plan", &planDict, py::arg("input"), py::arg("svg") = false, py::arg("progress") = py::none(),
-        "Plan a pocket: input and output dicts as in docs/plan-format.md; with svg=True "
-        "the result also holds \"svg\", the plan's picture. progress(fraction, stage) is called "
+        "Plan a pocket: input and output dicts as in docs/plan-format.md; the result also "
+        "holds \"summary\", the plan in one line for people (the CLI's), and with svg=True \"svg\", "
+        "the plan's picture. progress(fraction, stage) is called "
         "about every 0.1 s while planning; returning False cancels (ValueError \"planning cancelled\"). "
         "Ctrl+C interrupts planning (KeyboardInterrupt).");
+  m.def("start_hole_tools", &startHoleTools, py::arg("tools"),
+        "The drill of each tool that does not cut at its centre, as the planner chooses it: "
+        "{tool id: drill id} for tools given as in the input's \"tools\"; ValueError when one has none.");
   py::class_<plunge::OptimizeResult>(m, "Result", "Global optimum found by plunge.optimize")
       .def_property_readonly("x", [](const plunge::OptimizeResult& r) { return asTuple(r.x); })
       .def_readonly("value", &plunge::OptimizeResult::value)

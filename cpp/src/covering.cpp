@@ -5,6 +5,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <iterator>
 #include <map>
@@ -38,6 +39,18 @@ constexpr size_t kCornerWalls = 64;
 // wall (thousands of vertices, all crossed by every scanline when it runs
 // along x) would cost the whole strip squared.
 constexpr size_t kSplitVertices = 1000;
+// Pieces with more vertices are cut into cells once, for gainOf (long strips
+// along the walls: each evaluation then clips only the cells in reach).
+constexpr size_t kChunkVertices = 300;
+// Pieces of material below the crumb are neither covered nor pins: with a
+// wall band (a core covered whole) kCoreCrumb mm^2, the polygons' slivers;
+// otherwise kCrumbShare of the smallest tool's r^2.
+constexpr double kCoreCrumb = 0.004;
+constexpr double kCrumbShare = 0.01;
+// Halvings of a gap larger than the largest tool (encloseGap), and of a piece
+// into the anchors of its candidates (anchorsOf).
+constexpr int kGapSplits = 8;
+constexpr int kAnchorSplits = 6;
 
 // `area` minus the disks. Done tile by tile: Clipper's sweep slows down with
 // the number of edges a scanline crosses, and the uncovered part is small, so
@@ -225,6 +238,195 @@ DelaunayGaps delaunayGaps(const std::vector<PackedDisk>& packed) {
 
 namespace {
 
+// The material the covering still has to cut: pieces of polygon (a large one
+// halved until each part is small), an R-tree of their boxes, which are pins
+// (touching no edge of the accessible region: free-standing material), and the
+// area a disk would cut from them.
+class MaterialPieces {
+ public:
+  struct Chunk {
+    clip::Paths poly;
+    Vec2 lo, hi;
+    double area;
+  };
+  struct Piece {
+    clip::Paths poly;
+    Vec2 lo, hi;
+    double area;
+    bool pin;  // touches no edge of the accessible region: a free-standing core of material
+    bool alive;
+    mutable bool chunked = false;        // chunks computed (empty for small pieces)
+    mutable std::vector<Chunk> chunks;  // a large piece cut into cells, for gainOf
+  };
+  // rMin, rMax: the tools' radii; core: covering a core whole (every piece a
+  // pin); crumb: pieces below it count neither as pins nor for candidates.
+  MaterialPieces(double rMin, double rMax, bool core, double crumb)
+      : rMin_(rMin), rMax_(rMax), crumb_(crumb), core_(core) {}
+  // The accessible region's outline: pieces touching it are no pins.
+  void setOutline(const clip::Paths& accessible) {
+    std::vector<BoxValue> boxes;
+    for (const clip::Path& q : accessible)
+      for (size_t i = 0, j = q.size() - 1; i < q.size(); j = i++) {
+        const Vec2 a = clip::toMm(q[j]), b = clip::toMm(q[i]);
+        boundary_.push_back({a, b});
+        boxes.emplace_back(boxOf(boundary_.back()), static_cast<int>(boundary_.size() - 1));
+      }
+    boundaryIndex_ = decltype(boundaryIndex_)(boxes.begin(), boxes.end());
+  }
+  // Called with each piece added from now on.
+  void onAdded(std::function<void(int)> f) { onAdded_ = std::move(f); }
+  // Pins no plunge can reach (slivers of the polygon approximation) count no more.
+  void givePinsUp() {
+    for (Piece& p : pieces_)
+      if (p.alive && p.pin && p.area >= crumb_) p.pin = false;
+    pins_ = 0;
+  }
+  const Piece& operator[](int id) const { return pieces_[id]; }
+  const std::vector<Piece>& all() const { return pieces_; }
+  double uncovered() const { return uncovered_; }
+  int pins() const { return pins_; }
+
+  // A piece of material to cover (split when large).
+  void add(clip::Paths poly) {
+    const bool pin = core_ || !touchesBoundary(poly);
+    addSplit(std::move(poly), pin);
+  }
+
+  void kill(int id) {
+    Piece& p = pieces_[id];
+    p.alive = false;
+    uncovered_ -= p.area;
+    if (p.pin && p.area >= crumb_) --pins_;
+    pieceIndex_.remove({boxOf(p.lo, p.hi), id});
+  }
+
+  std::vector<int> near(Vec2 lo, Vec2 hi) const {
+    std::vector<BoxValue> hits;
+    pieceIndex_.query(bgi::intersects(boxOf(lo, hi)), std::back_inserter(hits));
+    std::vector<int> out;
+    for (const auto& h : hits) out.push_back(h.second);
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+  // Cuts a disk (its polygon, within lo..hi) out of the pieces it touches.
+  void cut(const clip::Paths& disk, Vec2 lo, Vec2 hi) {
+    for (int id : near(lo, hi)) {
+      clip::Paths rest = clip::boolean(pieces_[id].poly, disk, ClipperLib::ctDifference);
+      if (clip::area(rest) >= pieces_[id].area) continue;  // untouched: keep it and its candidates
+      kill(id);
+      for (clip::Paths& part : clip::components(rest)) add(std::move(part));
+    }
+  }
+
+  // Uncovered area a disk would cut. Large pieces (long strips along walls) are
+  // cut once into cells, so that each evaluation clips only the cells in reach.
+  double gainOf(Vec2 c, double r) const {
+    // Coarse but inscribed: inside the polygon addDisk cuts with, so a disk is only
+    // placed when it really removes what it was ranked by (no endless re-placing of
+    // a disk whose gain was a polygon artefact).
+    const clip::Paths disk{clip::diskPath({c, r}, 4 * kDiskChord, false)};
+    const Vec2 lo{c.x - r, c.y - r}, hi{c.x + r, c.y + r};
+    auto clipped = [&](const clip::Paths& poly, double area, Vec2 plo, Vec2 phi) {
+      const bool within = dist(c, plo) <= r && dist(c, phi) <= r && dist(c, {plo.x, phi.y}) <= r &&
+                          dist(c, {phi.x, plo.y}) <= r;
+      return within ? area : clip::area(clip::boolean(poly, disk, ClipperLib::ctIntersection));
+    };
+    double g = 0.0;
+    for (int id : near(lo, hi)) {
+      const Piece& p = pieces_[id];
+      if (!p.chunked) chunk(p);
+      if (p.chunks.empty()) {
+        g += clipped(p.poly, p.area, p.lo, p.hi);
+        continue;
+      }
+      for (const Chunk& k : p.chunks)
+        if (k.lo.x <= hi.x && k.hi.x >= lo.x && k.lo.y <= hi.y && k.hi.y >= lo.y) g += clipped(k.poly, k.area, k.lo, k.hi);
+    }
+    return g;
+  }
+
+ private:
+  // (Queries collect their hits: GCC 16 warns falsely about Boost's
+  // incremental query iterators inlined here, -Warray-bounds.)
+  bool touchesBoundary(const clip::Paths& p) const {
+    constexpr double tol = 3.0 / poly::kScale;
+    std::vector<BoxValue> hits;
+    for (const clip::Path& q : p)
+      for (const clip::IntPoint& v : q) {
+        const Vec2 m = clip::toMm(v);
+        const BBox b = boxOf({m.x - tol, m.y - tol}, {m.x + tol, m.y + tol});
+        hits.clear();
+        boundaryIndex_.query(bgi::intersects(b), std::back_inserter(hits));
+        for (const auto& h : hits)
+          if (distanceToSegment(boundary_[h.second], m) <= tol) return true;
+      }
+    return false;
+  }
+
+  // A large piece (kSplitVertices) is cut in halves across its longer side
+  // until each part has few vertices or fits in a cell of 4 rMax. The cuts
+  // are no walls: the parts keep the piece's pin state.
+  void addSplit(clip::Paths poly, bool pin) {
+    size_t vertices = 0;
+    for (const clip::Path& q : poly) vertices += q.size();
+    Vec2 lo, hi;
+    clip::bounds(poly, lo, hi);
+    const double cell = 4 * rMax_;
+    if (vertices <= kSplitVertices || (hi.x - lo.x <= cell && hi.y - lo.y <= cell)) {
+      addPart(std::move(poly), lo, hi, pin);
+      return;
+    }
+    for (clip::Paths& part : splitInHalves(poly, 0.5 * (lo + hi))) addSplit(std::move(part), pin);
+  }
+
+  void addPart(clip::Paths poly, Vec2 lo, Vec2 hi, bool pin) {
+    Piece p;
+    p.area = clip::area(poly);
+    if (p.area <= 0.0) return;
+    p.lo = lo;
+    p.hi = hi;
+    p.pin = pin;
+    p.alive = true;
+    p.poly = std::move(poly);
+    uncovered_ += p.area;
+    const int id = static_cast<int>(pieces_.size());
+    pieceIndex_.insert({boxOf(p.lo, p.hi), id});
+    pieces_.push_back(std::move(p));
+    if (pieces_.back().pin && pieces_.back().area >= crumb_) ++pins_;
+    if (onAdded_) onAdded_(id);
+  }
+
+  void chunk(const Piece& p) const {
+    p.chunked = true;
+    size_t vertices = 0;
+    for (const clip::Path& q : p.poly) vertices += q.size();
+    if (vertices <= kChunkVertices) return;
+    const double cell = 4 * std::sqrt(rMin_ * rMax_);
+    for (double y = p.lo.y; y < p.hi.y; y += cell)
+      for (double x = p.lo.x; x < p.hi.x; x += cell) {
+        const clip::Path rect{clip::toInt({x, y}), clip::toInt({x + cell, y}), clip::toInt({x + cell, y + cell}),
+                              clip::toInt({x, y + cell})};
+        Chunk k;
+        k.poly = clip::boolean(p.poly, {rect}, ClipperLib::ctIntersection);
+        if (k.poly.empty()) continue;
+        k.area = clip::area(k.poly);
+        clip::bounds(k.poly, k.lo, k.hi);
+        p.chunks.push_back(std::move(k));
+      }
+  }
+
+  double rMin_, rMax_, crumb_;
+  bool core_;
+  std::vector<Segment> boundary_;
+  RStarTree<BoxValue> boundaryIndex_;
+  std::vector<Piece> pieces_;
+  RStarTree<BoxValue> pieceIndex_;
+  double uncovered_ = 0.0;
+  int pins_ = 0;
+  std::function<void(int)> onAdded_;
+};
+
 class Coverer {
  public:
   Coverer(const Region& region, const std::vector<double>& radii, const CoveringOptions& opt)
@@ -237,7 +439,8 @@ class Coverer {
     // With a band the core is covered whole: only slivers of the polygon
     // approximation (under 0.01 mm^2 measured) may stay.
     core_ = opt.wallStock > 0.0;
-    crumb_ = core_ ? 0.004 : 0.01 * rMin_ * rMin_;
+    crumb_ = core_ ? kCoreCrumb : kCrumbShare * rMin_ * rMin_;
+    pieces_ = MaterialPieces(rMin_, rMax_, core_, crumb_);
   }
 
   // Phases: the material the packing leaves, its Delaunay gaps (4.2.2), every
@@ -261,7 +464,7 @@ class Coverer {
   Polygons materialLeft(const Polygons& acc, const std::vector<PackedDisk>& packed) {
     accessible_ = clip::toPaths(acc);
     result_.accessibleArea = clip::area(accessible_);
-    buildBoundaryIndex();
+    pieces_.setOutline(accessible_);
     std::vector<Circle> circles;
     for (const PackedDisk& d : packed) {
       result_.disks.push_back({d.center, d.radius, d.tool, Stage::Packing});
@@ -280,15 +483,15 @@ class Coverer {
     // With a band, disks are inscribed polygons in planning too: what the
     // planner counts as cut is cut, so no sliver of the core survives the real disks.
     const clip::Paths left = core_ ? subtractDisks(toCover, circles, false) : subtractDisks(accessible_, circles, true);
-    for (clip::Paths& c : clip::components(left)) addPiece(std::move(c));
+    for (clip::Paths& c : clip::components(left)) pieces_.add(std::move(c));
     return core;
   }
 
   void generateAllCandidates() {
-    generating_ = true;
-    for (size_t i = 0; i < pieces_.size(); ++i) {
+    pieces_.onAdded([this](int id) { generateCandidates(id); });
+    for (size_t i = 0; i < pieces_.all().size(); ++i) {
       opt_.progress.tick();
-      if (pieces_[i].alive) generateCandidates(static_cast<int>(i));
+      if (pieces_[static_cast<int>(i)].alive) generateCandidates(static_cast<int>(i));
     }
   }
 
@@ -325,20 +528,6 @@ class Coverer {
   }
 
  private:
-  struct Chunk {
-    clip::Paths poly;
-    Vec2 lo, hi;
-    double area;
-  };
-  struct Piece {
-    clip::Paths poly;
-    Vec2 lo, hi;
-    double area;
-    bool pin;  // touches no edge of the accessible region: a free-standing core of material
-    bool alive;
-    mutable bool chunked = false;        // chunks computed (empty for small pieces)
-    mutable std::vector<Chunk> chunks;  // a large piece cut into cells, for gainOf
-  };
   struct Candidate {
     double gain;
     int seq;
@@ -348,156 +537,10 @@ class Coverer {
     bool operator<(const Candidate& o) const { return gain < o.gain || (gain == o.gain && seq > o.seq); }
   };
 
-  // --- uncovered material -------------------------------------------------
-
-  void buildBoundaryIndex() {
-    std::vector<BoxValue> boxes;
-    for (const clip::Path& q : accessible_)
-      for (size_t i = 0, j = q.size() - 1; i < q.size(); j = i++) {
-        const Vec2 a = clip::toMm(q[j]), b = clip::toMm(q[i]);
-        boundary_.push_back({a, b});
-        boxes.emplace_back(boxOf(boundary_.back()), static_cast<int>(boundary_.size() - 1));
-      }
-    boundaryIndex_ = decltype(boundaryIndex_)(boxes.begin(), boxes.end());
-  }
-
-  // (Queries collect their hits: GCC 16 warns falsely about Boost's
-  // incremental query iterators inlined here, -Warray-bounds.)
-  bool touchesBoundary(const clip::Paths& p) const {
-    constexpr double tol = 3.0 / poly::kScale;
-    std::vector<BoxValue> hits;
-    for (const clip::Path& q : p)
-      for (const clip::IntPoint& v : q) {
-        const Vec2 m = clip::toMm(v);
-        const BBox b = boxOf({m.x - tol, m.y - tol}, {m.x + tol, m.y + tol});
-        hits.clear();
-        boundaryIndex_.query(bgi::intersects(b), std::back_inserter(hits));
-        for (const auto& h : hits)
-          if (distanceToSegment(boundary_[h.second], m) <= tol) return true;
-      }
-    return false;
-  }
-
-  void addPiece(clip::Paths poly) {
-    const bool pin = core_ || !touchesBoundary(poly);
-    addSplit(std::move(poly), pin);
-  }
-
-  // A large piece (kSplitVertices) is cut in halves across its longer side
-  // until each part has few vertices or fits in a cell of 4 rMax. The cuts
-  // are no walls: the parts keep the piece's pin state.
-  void addSplit(clip::Paths poly, bool pin) {
-    size_t vertices = 0;
-    for (const clip::Path& q : poly) vertices += q.size();
-    Vec2 lo, hi;
-    clip::bounds(poly, lo, hi);
-    const double cell = 4 * rMax_;
-    if (vertices <= kSplitVertices || (hi.x - lo.x <= cell && hi.y - lo.y <= cell)) {
-      addPart(std::move(poly), lo, hi, pin);
-      return;
-    }
-    const clip::IntPoint a = clip::toInt(lo - Vec2{1, 1}), b = clip::toInt(hi + Vec2{1, 1}),
-                         m = clip::toInt(0.5 * (lo + hi));
-    const bool alongX = hi.x - lo.x >= hi.y - lo.y;
-    const clip::Path first = alongX ? clip::Path{a, {m.X, a.Y}, {m.X, b.Y}, {a.X, b.Y}}
-                                    : clip::Path{a, {b.X, a.Y}, {b.X, m.Y}, {a.X, m.Y}};
-    const clip::Path second = alongX ? clip::Path{{m.X, a.Y}, {b.X, a.Y}, b, {m.X, b.Y}}
-                                     : clip::Path{{a.X, m.Y}, {b.X, m.Y}, b, {a.X, b.Y}};
-    for (const clip::Path& half : {first, second})
-      for (clip::Paths& part : clip::components(clip::boolean(poly, {half}, ClipperLib::ctIntersection)))
-        addSplit(std::move(part), pin);
-  }
-
-  void addPart(clip::Paths poly, Vec2 lo, Vec2 hi, bool pin) {
-    Piece p;
-    p.area = clip::area(poly);
-    if (p.area <= 0.0) return;
-    p.lo = lo;
-    p.hi = hi;
-    p.pin = pin;
-    p.alive = true;
-    p.poly = std::move(poly);
-    uncovered_ += p.area;
-    const int id = static_cast<int>(pieces_.size());
-    pieceIndex_.insert({boxOf(p.lo, p.hi), id});
-    pieces_.push_back(std::move(p));
-    if (pieces_.back().pin && pieces_.back().area >= crumb_) ++pins_;
-    if (generating_) generateCandidates(id);
-  }
-
-  void killPiece(int id) {
-    Piece& p = pieces_[id];
-    p.alive = false;
-    uncovered_ -= p.area;
-    if (p.pin && p.area >= crumb_) --pins_;
-    pieceIndex_.remove({boxOf(p.lo, p.hi), id});
-  }
-
-  std::vector<int> piecesNear(Vec2 lo, Vec2 hi) const {
-    std::vector<BoxValue> hits;
-    pieceIndex_.query(bgi::intersects(boxOf(lo, hi)), std::back_inserter(hits));
-    std::vector<int> out;
-    for (const auto& h : hits) out.push_back(h.second);
-    std::sort(out.begin(), out.end());
-    return out;
-  }
-
   void addDisk(Vec2 c, int tool, Stage stage) {
     const double r = radii_[tool];
     result_.disks.push_back({c, r, tool, stage});
-    const clip::Paths disk{clip::diskPath({c, r}, kDiskChord, !core_)};
-    for (int id : piecesNear({c.x - r, c.y - r}, {c.x + r, c.y + r})) {
-      clip::Paths rest = clip::boolean(pieces_[id].poly, disk, ClipperLib::ctDifference);
-      if (clip::area(rest) >= pieces_[id].area) continue;  // untouched: keep it and its candidates
-      killPiece(id);
-      for (clip::Paths& part : clip::components(rest)) addPiece(std::move(part));
-    }
-  }
-
-  // Uncovered area a disk would cut. Large pieces (long strips along walls) are
-  // cut once into cells, so that each evaluation clips only the cells in reach.
-  double gainOf(Vec2 c, double r) const {
-    // Coarse but inscribed: inside the polygon addDisk cuts with, so a disk is only
-    // placed when it really removes what it was ranked by (no endless re-placing of
-    // a disk whose gain was a polygon artefact).
-    const clip::Paths disk{clip::diskPath({c, r}, 4 * kDiskChord, false)};
-    const Vec2 lo{c.x - r, c.y - r}, hi{c.x + r, c.y + r};
-    auto cut = [&](const clip::Paths& poly, double area, Vec2 plo, Vec2 phi) {
-      const bool within = dist(c, plo) <= r && dist(c, phi) <= r && dist(c, {plo.x, phi.y}) <= r &&
-                          dist(c, {phi.x, plo.y}) <= r;
-      return within ? area : clip::area(clip::boolean(poly, disk, ClipperLib::ctIntersection));
-    };
-    double g = 0.0;
-    for (int id : piecesNear(lo, hi)) {
-      const Piece& p = pieces_[id];
-      if (!p.chunked) chunk(p);
-      if (p.chunks.empty()) {
-        g += cut(p.poly, p.area, p.lo, p.hi);
-        continue;
-      }
-      for (const Chunk& k : p.chunks)
-        if (k.lo.x <= hi.x && k.hi.x >= lo.x && k.lo.y <= hi.y && k.hi.y >= lo.y) g += cut(k.poly, k.area, k.lo, k.hi);
-    }
-    return g;
-  }
-
-  void chunk(const Piece& p) const {
-    p.chunked = true;
-    size_t vertices = 0;
-    for (const clip::Path& q : p.poly) vertices += q.size();
-    if (vertices <= 300) return;
-    const double cell = 4 * std::sqrt(rMin_ * rMax_);
-    for (double y = p.lo.y; y < p.hi.y; y += cell)
-      for (double x = p.lo.x; x < p.hi.x; x += cell) {
-        const clip::Path rect{clip::toInt({x, y}), clip::toInt({x + cell, y}), clip::toInt({x + cell, y + cell}),
-                              clip::toInt({x, y + cell})};
-        Chunk k;
-        k.poly = clip::boolean(p.poly, {rect}, ClipperLib::ctIntersection);
-        if (k.poly.empty()) continue;
-        k.area = clip::area(k.poly);
-        clip::bounds(k.poly, k.lo, k.hi);
-        p.chunks.push_back(std::move(k));
-      }
+    pieces_.cut({clip::diskPath({c, r}, kDiskChord, !core_)}, {c.x - r, c.y - r}, {c.x + r, c.y + r});
   }
 
   // --- feasible centres ---------------------------------------------------
@@ -554,7 +597,7 @@ class Coverer {
     // Gaps that hold uncovered material: locate a point of every uncovered piece.
     std::vector<int> groups;
     std::vector<BoxValue> hits;
-    for (const Piece& p : pieces_) {
+    for (const MaterialPieces::Piece& p : pieces_.all()) {
       if (!p.alive || p.area < crumb_) continue;
       const Vec2 q = interiorPoint(p.poly);
       hits.clear();
@@ -582,7 +625,7 @@ class Coverer {
       Vec2 lo, hi;
       clip::bounds(gapPoly, lo, hi);
       clip::Paths material;
-      for (int id : piecesNear(lo, hi))
+      for (int id : pieces_.near(lo, hi))
         for (const clip::Path& q : pieces_[id].poly) material.push_back(q);
       const clip::Paths gap = clip::boolean(material, gapPoly, ClipperLib::ctIntersection);
       for (clip::Paths& part : clip::components(gap)) encloseGap(part, 0);
@@ -603,7 +646,7 @@ class Coverer {
         }
       return;
     }
-    if (depth >= 8) return;
+    if (depth >= kGapSplits) return;
     for (const clip::Paths& part : splitInHalves(gap, mec.c)) encloseGap(part, depth + 1);
   }
 
@@ -615,13 +658,13 @@ class Coverer {
     // Split until the smallest tool could take a part whole: a crescent left
     // beside a plunge has the same enclosing circle as the piece it came from,
     // whose centre that plunge already took.
-    if (mec.r <= rMin_ || depth >= 6) return;
+    if (mec.r <= rMin_ || depth >= kAnchorSplits) return;
     for (const clip::Paths& part : splitInHalves(p, mec.c))
       if (clip::area(part) >= crumb_) anchorsOf(part, depth + 1, out);
   }
 
   void generateCandidates(int id) {
-    const Piece& p = pieces_[id];
+    const MaterialPieces::Piece& p = pieces_[id];
     if (p.area < crumb_) return;
     std::vector<Vec2> anchors;
     anchorsOf(p.poly, 0, anchors);
@@ -681,7 +724,7 @@ class Coverer {
   void queueCandidate(Vec2 c, int t, int id) {
     const double r = radii_[t];
     double bound = 0.0;
-    for (int o : piecesNear({c.x - r, c.y - r}, {c.x + r, c.y + r})) bound += pieces_[o].area;
+    for (int o : pieces_.near({c.x - r, c.y - r}, {c.x + r, c.y + r})) bound += pieces_[o].area;
     bound = std::min(bound, kPi * r * r);
     if (bound < 0.5 * crumb_) return;
     (pieces_[id].pin ? pinQueue_ : wallQueue_).push({bound, seq_++, c, t, id});
@@ -690,21 +733,19 @@ class Coverer {
   void coverResidual(double target) {
     for (int guard = 0; guard < 1000000; ++guard) {
       opt_.progress.tick();
-      const bool pinMode = pins_ > 0;
-      if (!pinMode && result_.accessibleArea - uncovered_ >= target) break;
+      const bool pinMode = pieces_.pins() > 0;
+      if (!pinMode && result_.accessibleArea - pieces_.uncovered() >= target) break;
       auto& q = pinMode ? pinQueue_ : wallQueue_;
       if (q.empty()) {
         if (!pinMode) break;
         // Pins no plunge can reach (slivers of the polygon approximation): give up on them.
-        for (Piece& p : pieces_)
-          if (p.alive && p.pin && p.area >= crumb_) p.pin = false;
-        pins_ = 0;
+        pieces_.givePinsUp();
         continue;
       }
       Candidate c = q.top();
       q.pop();
       if (!pieces_[c.piece].alive) continue;  // its piece changed: fresh candidates exist
-      const double g = gainOf(c.c, radii_[c.tool]);
+      const double g = pieces_.gainOf(c.c, radii_[c.tool]);
       if (g < 0.5 * crumb_) continue;
       if (!q.empty() && g < q.top().gain) {  // stale: re-queue with its true gain (lazy greedy)
         c.gain = g;
@@ -723,13 +764,7 @@ class Coverer {
   double rMin_ = 0, rMax_ = 0, crumb_ = 0;
   bool core_ = false;  // a wall band: cover the core whole (CoveringOptions::wallStock)
   clip::Paths accessible_;
-  std::vector<Segment> boundary_;
-  RStarTree<BoxValue> boundaryIndex_;
-  std::vector<Piece> pieces_;
-  RStarTree<BoxValue> pieceIndex_;
-  double uncovered_ = 0.0;
-  int pins_ = 0;
-  bool generating_ = false;
+  MaterialPieces pieces_{0.0, 0.0, false, 0.0};
   int seq_ = 0;
   std::priority_queue<Candidate> pinQueue_, wallQueue_;
   CoverResult result_;

@@ -14,26 +14,6 @@
 
 namespace plunge {
 
-double engagementLimit(const Tool& t) {
-  double e = t.maxEngagement > 0.0 ? t.maxEngagement : std::numeric_limits<double>::infinity();
-  if (!t.centerCutting) e = std::min(e, 0.5 * (t.diameter - t.coreDiameter));
-  return e;
-}
-
-const Tool& startHoleTool(const std::vector<Tool>& tools, const Tool& tool) {
-  const Tool* best = nullptr;
-  for (const Tool& t : tools)
-    if (t.centerCutting && t.diameter >= tool.coreDiameter && (!best || t.diameter < best->diameter)) best = &t;
-  if (!best) {
-    std::ostringstream m;
-    m << "tool " << tool.id << " (diameter " << tool.diameter << ") does not cut at its centre and the job has no "
-      << "centre-cutting tool at least " << tool.coreDiameter
-      << " mm wide to drill its start holes: add one (a drill or a centre-cutting end mill)";
-    throw Error(m.str());
-  }
-  return *best;
-}
-
 namespace {
 
 // Centres this much farther from the allowed region than the radius: the
@@ -48,6 +28,21 @@ constexpr double kWallBand = 0.9;
 // The floor stock a limited tool leaves to the finishing pass, as a share of
 // max_floor_stock (the raster's heights and the stock samples' differ a little).
 constexpr double kFloorBand = 0.9;
+// The contour along the walls is spaced for this share of max_wall_stock on
+// straight walls (the raster measures to a cell; refineContour adds plunges
+// where curved walls leave up to kWallBand).
+constexpr double kContourScallop = 0.8;
+// Rings (the fallback after the paths): a ring lies this share of the band
+// inside what is cut, and its plunges a chord of that band apart times
+// kRingChord, so that every plunge measures a little under the band.
+constexpr double kRingBand = 0.98;
+constexpr double kRingChord = 0.9;
+// A plunge is worth making when it cuts this share of its disk's raster cells,
+// and at least kMinGainCells of them (fewer is the raster's noise).
+constexpr double kMinGainShare = 0.003;
+constexpr int kMinGainCells = 3;
+// Rounds of rings that cut nothing before a tool gives up on its targets.
+constexpr int kStallRounds = 3;
 
 // A grid cell's key. Unsigned: shifting a negative cell index left is undefined.
 long long pack(long i, long j) {
@@ -373,9 +368,8 @@ void refineContour(GrowthPath& path, const Polygons& centres, const Region& regi
 
 class Grower {
  public:
-  Grower(const PlanInput& in, const Region& region, const DepthSolver& depths, HeightField& stock,
-         const Progress& progress)
-      : in_(in), region_(region), depths_(depths), stock_(stock), progress_(progress) {}
+  Grower(const EngagementOptions& in, const Region& region, const DepthSolver& depths, HeightField& stock)
+      : in_(in), region_(region), depths_(depths), stock_(stock), progress_(in.progress) {}
 
   std::vector<Plunge> run(const std::vector<Plunge>& ordered) {
     size_t i = 0;
@@ -397,11 +391,7 @@ class Grower {
   }
 
  private:
-  const Tool& toolOf(int id) const {
-    for (const Tool& t : in_.tools)
-      if (t.id == id) return t;
-    throw InternalError("a plunge of an unknown tool");
-  }
+  const Tool& toolOf(int id) const { return in_.tools.byId(id); }
   void add(const Plunge& p) {
     order_.push_back(p);
     stock_.cut({p.x, p.y}, cutterOf(toolOf(p.toolId)), p.z);
@@ -424,7 +414,7 @@ class Grower {
     settle();
     const Cutter cutter = cutterOf(tool);
     const double r = cutter.radius, e = std::min(engagementLimit(tool), 2 * r);
-    const double coreR = tool.centerCutting ? 0.0 : 0.5 * tool.coreDiameter;
+    const double coreR = coreRadius(tool);
     const double h = stock_.spacing();
     Targets targets(planned, cutter, stock_);
     for (const Plunge& p : planned) targets.update({p.x, p.y}, r, stock_);
@@ -438,17 +428,17 @@ class Grower {
     const Polygons centres = poly::offset(allowedRegion(region_, in_.radialAllowance), -(r + kCentreMargin));
     // Along a ring, plunges a chord of the band apart: the next ring's offset
     // follows the scallops they leave.
-    const double depthIn = r - 0.98 * e;
-    const double step = std::clamp(0.9 * std::sqrt(std::max(0.0, r * r - depthIn * depthIn)),
+    const double depthIn = r - kRingBand * e;
+    const double step = std::clamp(kRingChord * std::sqrt(std::max(0.0, r * r - depthIn * depthIn)),
                                    std::max(tool.minEngagement, 2 * h), r);
-    const int minGain = std::max(3, static_cast<int>(0.003 * kPi * r * r / (h * h)));
+    const int minGain = std::max(kMinGainCells, static_cast<int>(kMinGainShare * kPi * r * r / (h * h)));
     std::vector<bool> triedStart(planned.size(), false);
     Vec2 at = order_.empty() ? (in_.start ? *in_.start : region_.loops()[0].front())
                              : Vec2{order_.back().x, order_.back().y};
     growAlongPaths(tool, cutter, centres, targets, minGain, at);
     forgetFloorStock(targets);
     int stalls = 0;  // rounds that cut no target point (a guard: each round should)
-    while (targets.left() > 0 && stalls < 3) {
+    while (targets.left() > 0 && stalls < kStallRounds) {
       progress_.tick();
       const size_t before = targets.left();
       const Polygons ring = poly::intersect(poly::offset(cleared_, -depthIn, 0.01), centres);
@@ -506,7 +496,7 @@ class Grower {
   }
   bool sculptured() const {
     return !depths_.floor().isFlat() ||
-           std::any_of(in_.tools.begin(), in_.tools.end(), [](const Tool& t) { return t.shape != CutterShape::Flat; });
+           std::any_of(in_.tools.all().begin(), in_.tools.all().end(), [](const Tool& t) { return t.shape != CutterShape::Flat; });
   }
 
   // Grows along the contour and rows (growthPaths): each path is entered next
@@ -516,7 +506,7 @@ class Grower {
   void growAlongPaths(const Tool& tool, const Cutter& cutter, const Polygons& centres, Targets& targets,
                       int minGain, Vec2& at) {
     const double r = cutter.radius, e = std::min(engagementLimit(tool), 2 * r);
-    const double coreR = tool.centerCutting ? 0.0 : 0.5 * tool.coreDiameter;
+    const double coreR = coreRadius(tool);
     const double h = stock_.spacing();
     // A step a little under the band (the raster measures to a cell); rows as
     // far apart as the scallops along them allow, a cell of overlap.
@@ -528,7 +518,7 @@ class Grower {
     // Along the walls, plunges close enough that their scallops keep the wall
     // stock limit (with a margin for the raster).
     double wallStep = step;
-    const double scallop = 0.8 * in_.maxWallStock;
+    const double scallop = kContourScallop * in_.maxWallStock;
     if (scallop > 0 && scallop < r) wallStep = std::min(step, 2 * std::sqrt(r * r - (r - scallop) * (r - scallop)));
     std::vector<GrowthPath> paths = growthPaths(centres, step, wallStep, rowSpacing(r, step) - h);
     if (scallop > 0)
@@ -688,12 +678,12 @@ class Grower {
   // hole its start-hole tool can drill there.
   bool canStart(const Tool& tool, Vec2 c) const {
     if (tool.centerCutting) return true;
-    const Tool& drill = startHoleTool(in_.tools, tool);
+    const Tool& drill = in_.tools.startHoleFor(tool);
     return stopAt(c, drill) && region_.diskFits(c, 0.5 * drill.diameter + in_.radialAllowance);
   }
   void drillStart(const Tool& tool, Vec2 c) {
     if (tool.centerCutting) return;
-    const Tool& drill = startHoleTool(in_.tools, tool);
+    const Tool& drill = in_.tools.startHoleFor(tool);
     Plunge hole = plungeOf(drill, c, *stopAt(c, drill));
     hole.startHole = hole.start = true;
     holes_.push_back(hole);
@@ -707,7 +697,7 @@ class Grower {
     settle();
     std::vector<Circle> want;
     for (const Plunge& p : planned) want.push_back({{p.x, p.y}, cutter.radius});
-    const double coreR = tool.centerCutting ? 0.0 : 0.5 * tool.coreDiameter;
+    const double coreR = coreRadius(tool);
     const double e = std::min(engagementLimit(tool), 2 * cutter.radius) + 2 * stock_.spacing();
     Polygons left = poly::subtract(poly::unionOfDisks(want), cleared_);
     if (in_.maxWallStock > 0)  // beyond the wall band, as the targets
@@ -749,7 +739,7 @@ class Grower {
   // plunge still cutting some that keeps the limits is made as planned.
   int finishPlanned(const Tool& tool, const Cutter& cutter, const std::vector<Plunge>& planned, Targets& targets,
                     Vec2& at) {
-    const double coreR = tool.centerCutting ? 0.0 : 0.5 * tool.coreDiameter;
+    const double coreR = coreRadius(tool);
     const double e = std::min(engagementLimit(tool), 2 * cutter.radius);
     int placed = 0;
     for (const Plunge& s : planned) {
@@ -782,7 +772,7 @@ class Grower {
     const Plunge& s = planned[best];
     const Vec2 c{s.x, s.y};
     if (!tool.centerCutting) {
-      const Tool& drill = startHoleTool(in_.tools, tool);
+      const Tool& drill = in_.tools.startHoleFor(tool);
       const std::optional<double> z = stopAt(c, drill);
       // No hole possible here (a drill wider than the plunger may not fit): another start.
       if (!z || !region_.diskFits(c, 0.5 * drill.diameter + in_.radialAllowance)) return true;
@@ -796,7 +786,7 @@ class Grower {
     return true;
   }
 
-  const PlanInput& in_;
+  const EngagementOptions& in_;
   const Region& region_;
   const DepthSolver& depths_;
   HeightField& stock_;
@@ -808,10 +798,10 @@ class Grower {
 
 }  // namespace
 
-std::vector<Plunge> growWithinLimits(const PlanInput& in, const Region& region, const DepthSolver& depths,
+std::vector<Plunge> growWithinLimits(const Region& region, const DepthSolver& depths,
                                      const std::vector<Plunge>& ordered, HeightField& stock,
-                                     const Progress& progress) {
-  return Grower(in, region, depths, stock, progress).run(ordered);
+                                     const EngagementOptions& options) {
+  return Grower(options, region, depths, stock).run(ordered);
 }
 
 }  // namespace plunge

@@ -8,6 +8,7 @@
 #include "plunge/covering.hpp"
 #include "plunge/error.hpp"
 #include "plunge/polygon.hpp"
+#include "plunge/tools.hpp"
 
 namespace plunge {
 
@@ -37,18 +38,11 @@ double pocketArea(const PlanInput& in) {
 
 namespace {
 
-// The band a tool may cut per plunge (engagement.hpp's engagementLimit), 0 when free.
-double band(const Tool& t) {
-  double e = t.maxEngagement > 0.0 ? t.maxEngagement : 0.0;
-  if (!t.centerCutting) e = e > 0.0 ? std::min(e, 0.5 * (t.diameter - t.coreDiameter)) : 0.5 * (t.diameter - t.coreDiameter);
-  return e;
-}
-
 // The largest tool with an engagement limit, which grows most of such a plan
 // (engagement.hpp), or none.
 const Tool* grownTool(const PlanInput& in) {
   for (const Tool& t : in.tools)  // largest first
-    if (band(t) > 0.0) return &t;
+    if (std::isfinite(engagementLimit(t))) return &t;
   return nullptr;
 }
 
@@ -59,7 +53,7 @@ double estimatedPlunges(const PlanInput& in) {
   const double packed = area / (kPi * r * r);
   const Tool* g = grownTool(in);
   // A grown cut: rows about 0.87 D apart, a plunge every e along them.
-  return g ? std::max(packed, kGrowthCost * area / (0.87 * g->diameter * std::min(band(*g), g->diameter))) : packed;
+  return g ? std::max(packed, kGrowthCost * area / (0.87 * g->diameter * std::min(engagementLimit(*g), g->diameter))) : packed;
 }
 
 void checkScale(const PlanInput& in) {
@@ -112,7 +106,7 @@ void checkScale(const PlanInput& in) {
     std::ostringstream m;
     m.precision(3);
     m << "tool " << t.id << " (diameter " << mm(t.diameter) << " mm";
-    if (grown) m << ", engagement limit " << mm(band(t)) << " mm";
+    if (grown) m << ", engagement limit " << mm(engagementLimit(t)) << " mm";
     m << ") in a " << mm(hi.x - lo.x) << " x " << mm(hi.y - lo.y) << " mm pocket: about "
       << (std::isfinite(n) ? n : 1e308) << (grown ? " plunge-equivalents (grown within the limit), " : " plunges, ")
       << "more than max_plunges (" << std::fixed << std::setprecision(0) << in.maxPlunges << "): "

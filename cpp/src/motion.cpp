@@ -7,7 +7,6 @@
 
 #include "detail.hpp"
 #include "plunge/covering.hpp"
-#include "plunge/engagement.hpp"
 #include "plunge/error.hpp"
 #include "plunge/polygon.hpp"
 
@@ -15,11 +14,15 @@ namespace plunge {
 
 namespace {
 
-const Tool& toolOf(const std::vector<Tool>& tools, int id) {
-  for (const Tool& t : tools)
-    if (t.id == id) return t;
-  throw InternalError("a plunge of an unknown tool");
-}
+// A rapid meeting more disks than this goes over top_z (Touched::highestAlong:
+// the exact test of a gap among them would cost more than the height saves).
+constexpr size_t kMaxDisksPerMove = 150;
+// Lead-out directions tried around each plunge, and holes cut before that it may lead toward.
+constexpr int kLeadOutDirections = 16;
+constexpr size_t kHolesTried = 8;
+// A raster cell's centre to its corner, in cells (sqrt(2) / 2, rounded up): how
+// far a material cell's centre may lie from the material it stands for.
+constexpr double kCellHalfDiagonal = 0.71;
 
 // Runs of consecutive plunges with the same tool and role.
 template <class F>
@@ -96,7 +99,7 @@ class Touched {
       }
     // Long moves over many disks go over the top of the stock: cheaper than the
     // exact test, and never lower than the truth.
-    if (near.empty() || near.size() > 150 || uncoveredWitness(a, b, r - 0.01, near)) return top_;
+    if (near.empty() || near.size() > kMaxDisksPerMove || uncoveredWitness(a, b, r - 0.01, near)) return top_;
     const double rs = r - 0.01;
     Polygons swept{poly::disk({a, rs})};
     if (dist(a, b) > 1e-9) {
@@ -179,25 +182,24 @@ class Touched {
 
 }  // namespace
 
-HeightField stockOf(const PlanInput& in, const Region& region) {
-  double rMin = 0.5 * in.tools.back().diameter, limit = rMin;
-  for (const Tool& t : in.tools) {
+HeightField stockOf(const std::vector<Tool>& tools, double topZ, const Region& region) {
+  double rMin = 0.5 * tools.back().diameter, limit = rMin;
+  for (const Tool& t : tools) {
     rMin = std::min(rMin, 0.5 * t.diameter);
     if (t.minEngagement > 0) limit = std::min(limit, t.minEngagement);
     if (t.maxEngagement > 0) limit = std::min(limit, t.maxEngagement);
   }
-  const double rMax = 0.5 * in.tools.front().diameter;
+  const double rMax = 0.5 * tools.front().diameter;
   const Vec2 lo = region.minCorner() - Vec2{rMax, rMax}, hi = region.maxCorner() + Vec2{rMax, rMax};
-  return HeightField(lo, hi, heightFieldSpacing(lo, hi, rMin, limit), in.topZ);
+  return HeightField(lo, hi, heightFieldSpacing(lo, hi, rMin, limit), topZ);
 }
 
-std::vector<Plunge> splitIntoLevels(const PlanInput& in, const std::vector<Plunge>& ordered,
-                                    PlanStats& stats) {
-  Touched touched(in.tools.front().diameter, in.topZ);
+std::vector<Plunge> splitIntoLevels(const std::vector<Plunge>& ordered, const MotionOptions& in, PlanStats& stats) {
+  Touched touched(in.tools.all().front().diameter, in.topZ);
   std::vector<Plunge> out;
   stats.levels = 1;
   forEachGroup(ordered, [&](size_t i, size_t j) {
-    const Tool& t = toolOf(in.tools, ordered[i].toolId);
+    const Tool& t = in.tools.byId(ordered[i].toolId);
     const Cutter cutter = cutterOf(t);
     std::vector<double> top;
     int levels = 1;
@@ -236,7 +238,7 @@ enum class NoLeadOut { None, Material, Walls };
 // material at its flanks by at most half the lead-out beyond the plunge's own
 // hole, measured with the holes' polygons. Cheap tests first, so the exact
 // ones run on few directions.
-std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const DepthSolver& depths,
+std::optional<Vec2> leadOutOf(const MotionOptions& in, const Region& region, const DepthSolver& depths,
                               const HeightField& stock, const Touched& touched, const Plunge& p,
                               const Cutter& cutter, std::optional<Plunge> back, NoLeadOut& why) {
   const Vec2 c{p.x, p.y};
@@ -260,10 +262,11 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
     if (back && dist(Vec2{back->x, back->y}, c) >= L && dist(Vec2{back->x, back->y}, c) <= reach &&
         back->z <= p.z + 1e-9)
       holes.push_back({back->x, back->y});
-    for (Vec2 h : touched.holesNear(c, r, p.z + cutterProfile(cutter, r), L, reach, 8)) holes.push_back(h);
+    for (Vec2 h : touched.holesNear(c, r, p.z + cutterProfile(cutter, r), L, reach, kHolesTried)) holes.push_back(h);
   }
   for (Vec2 h : holes) add(h - c, true);
-  for (int d = 0; d < 16; ++d) add({std::cos(2 * kPi * d / 16), std::sin(2 * kPi * d / 16)}, false);
+  for (int d = 0; d < kLeadOutDirections; ++d)
+    add({std::cos(2 * kPi * d / kLeadOutDirections), std::sin(2 * kPi * d / kLeadOutDirections)}, false);
   // Beside the way to a hole (a contour along a wall that bulges in: the
   // straight way back comes too near the wall), measured with polygons below.
   for (Vec2 h : holes)
@@ -289,7 +292,7 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
         return false;
     return true;
   };
-  const double margin = 0.71 * stock.spacing();
+  const double margin = kCellHalfDiagonal * stock.spacing();
   std::vector<signed char> fits(ends.size(), -1);  // noGouge, computed once when needed
   auto fitsAt = [&](size_t k) {
     if (fits[k] < 0) fits[k] = noGouge(ends[k].at) ? 1 : 0;
@@ -324,10 +327,10 @@ std::optional<Vec2> leadOutOf(const PlanInput& in, const Region& region, const D
 
 }  // namespace
 
-void planMotion(const PlanInput& in, const Region& region, const DepthSolver& depths, Plan& plan) {
-  HeightField stock = stockOf(in, region);
+void planMotion(const Region& region, const DepthSolver& depths, Plan& plan, const MotionOptions& in) {
+  HeightField stock = stockOf(in.tools.all(), in.topZ, region);
   std::vector<Plunge>& ps = plan.plunges;
-  Touched touched(in.tools.front().diameter, in.topZ);
+  Touched touched(in.tools.all().front().diameter, in.topZ);
   auto highestAlong = [&](Vec2 a, Vec2 b, double r) { return touched.highestAlong(a, b, r); };
   const double tol = 1.5 * stock.spacing();
   int tooDeep = 0, coreOnMaterial = 0;
@@ -336,12 +339,12 @@ void planMotion(const PlanInput& in, const Region& region, const DepthSolver& de
   plan.stats.travelLength = 0.0;
   for (size_t i = 0; i < ps.size(); ++i) {
     Plunge& p = ps[i];
-    const Tool& t = toolOf(in.tools, p.toolId);
+    const Tool& t = in.tools.byId(p.toolId);
     const Cutter cutter = cutterOf(t);
     const Vec2 c{p.x, p.y};
     const double r = cutter.radius;
     // What the plunge meets (engagement.hpp's measure).
-    const HeightField::Contact k = stock.contact(c, cutter, p.z, t.centerCutting ? 0.0 : 0.5 * t.coreDiameter);
+    const HeightField::Contact k = stock.contact(c, cutter, p.z, coreRadius(t));
     p.engagement = k.engagement;
     const double top = highestAlong(c, c, r);
     if (!p.start && t.maxEngagement > 0 && k.engagement > t.maxEngagement + tol) ++plan.stats.overEngaged;
@@ -388,17 +391,17 @@ void planMotion(const PlanInput& in, const Region& region, const DepthSolver& de
        " walls leave no wider cut): the tool may deflect there");
   warn(coreOnMaterial, " plunges of a non-centre-cutting tool have material under the core (uneven floor depths)");
   warn(tooDeep, " plunges cut deeper than their tool's flute length");
-  plan.stats.estimatedMinutes = motionMinutes(plan, in.tools, in, false);
-  plan.stats.minutesAtSafeHeight = motionMinutes(plan, in.tools, in, true);
+  plan.stats.estimatedMinutes = motionMinutes(plan, in, false);
+  plan.stats.minutesAtSafeHeight = motionMinutes(plan, in, true);
 }
 
-double motionMinutes(const Plan& plan, const std::vector<Tool>& tools, const PlanInput& in, bool atSafeHeight) {
+double motionMinutes(const Plan& plan, const MotionOptions& in, bool atSafeHeight) {
   const TimeModel& m = in.timeModel;
   double minutes = 0.0, z = in.safeZ;
   int changes = 0;
   for (size_t i = 0; i < plan.plunges.size(); ++i) {
     const Plunge& p = plan.plunges[i];
-    const double feed = toolOf(tools, p.toolId).feed;
+    const double feed = in.tools.byId(p.toolId).feed;
     if (i == 0 || plan.plunges[i - 1].toolId != p.toolId) ++changes;
     if (i > 0) {
       const Plunge& q = plan.plunges[i - 1];

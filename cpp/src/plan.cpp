@@ -23,147 +23,14 @@
 #include "plunge/grid.hpp"
 #include "plunge/packing.hpp"
 #include "plunge/polygon.hpp"
+#include "plunge/region.hpp"
+#include "plunge/selection.hpp"
 #include "plunge/sequencing.hpp"
 #include "plunge/stock.hpp"
+#include "plunge/tools.hpp"
+#include "plunge/validate.hpp"
 
 namespace plunge {
-
-namespace {
-
-void requireFinite(double v, const std::string& what) {
-  if (!std::isfinite(v)) throw Error(what + " is not a finite number");
-}
-
-// A real plunge mill's limits (engagement.hpp, motion.hpp); 0 is no limit.
-void validateMill(const Tool& t, const std::string& name) {
-  for (double v : {t.maxEngagement, t.minEngagement, t.coreDiameter, t.fluteLength})
-    if (!std::isfinite(v) || v < 0.0)
-      throw Error(name + ": max_engagement, min_engagement, core_diameter and flute_length must be >= 0");
-  if (t.maxEngagement > 0.0 && t.maxEngagement < 0.05 * t.diameter)
-    throw Error(name + ".max_engagement is below 5 % of the diameter: too many plunges to plan (is it in mm?)");
-  if (t.minEngagement >= t.diameter) throw Error(name + ".min_engagement must be below the diameter");
-  if (t.maxEngagement > 0.0 && t.minEngagement > t.maxEngagement)
-    throw Error(name + ".min_engagement is above its max_engagement");
-  if (t.centerCutting && t.coreDiameter > 0.0)
-    throw Error(name + ".core_diameter is for tools that do not cut at the centre (\"center_cutting\": false)");
-  if (!t.centerCutting && !(t.coreDiameter > 0.0 && t.coreDiameter < 0.9 * t.diameter))
-    throw Error(name + ": a tool that does not cut at the centre needs its core_diameter, above 0 and below 90 % of"
-                       " the diameter");
-  if (t.fluteLength > 0.0 && t.fluteLength <= cutterProfile(cutterOf(t), 0.5 * t.diameter) + 0.1)
-    throw Error(name + ".flute_length must exceed the corner radius by 0.1 mm or more");
-}
-
-// Each tool's numbers, then the tools sorted largest first.
-void validateTools(PlanInput& in) {
-  if (in.tools.empty()) throw Error(in.autoTools ? "tool_library: at least one tool is required"
-                                                 : "tools: at least one tool is required");
-  std::set<int> ids;
-  std::set<double> diameters;
-  for (size_t i = 0; i < in.tools.size(); ++i) {
-    const Tool& t = in.tools[i];
-    const std::string name = (in.autoTools ? "tool_library[" : "tools[") + std::to_string(i) + "]";
-    requireFinite(t.diameter, name + ".diameter");
-    if (t.diameter <= 0.0) throw Error(name + ".diameter must be > 0");
-    requireFinite(t.feed, name + ".feed");
-    if (t.feed <= 0.0) throw Error(name + ".feed must be > 0");
-    if (t.id <= 0 || t.id > kMaxToolId)
-      throw Error(name + ".id must be a positive integer up to " + std::to_string(kMaxToolId));
-    if (!ids.insert(t.id).second) throw Error(name + ".id " + std::to_string(t.id) + " is used twice");
-    if (!diameters.insert(t.diameter).second)
-      throw Error(name + ".diameter " + std::to_string(t.diameter) + " is given twice");
-    if (t.shape == CutterShape::Bull) {
-      requireFinite(t.cornerRadius, name + ".corner_radius");
-      if (!(t.cornerRadius > 0 && t.cornerRadius <= t.diameter / 2))
-        throw Error(name + ".corner_radius must be > 0 and at most half the diameter");
-    } else if (t.cornerRadius != 0.0) {
-      throw Error(name + ".corner_radius is for bull-nose tools (\"shape\": \"bull\")");
-    }
-    validateMill(t, name);
-  }
-  std::stable_sort(in.tools.begin(), in.tools.end(),
-                   [](const Tool& a, const Tool& b) { return a.diameter > b.diameter; });
-  for (const Tool& t : in.tools)
-    if (!t.centerCutting) startHoleTool(in.tools, t);  // throws naming the fix
-}
-
-// Heights and the floor.
-void validateHeights(const PlanInput& in) {
-  requireFinite(in.topZ, "top_z");
-  requireFinite(in.safeZ, "safe_z");
-  requireFinite(in.radialAllowance, "allowance.radial");
-  requireFinite(in.floorAllowance, "allowance.floor");
-  if (in.radialAllowance < 0.0) throw Error("allowance.radial must be >= 0");
-  if (in.floorAllowance < 0.0) throw Error("allowance.floor must be >= 0");
-  if (in.safeZ <= in.topZ) throw Error("safe_z must be above top_z");
-  if (in.floor.kind == Floor::Kind::Flat) {
-    requireFinite(in.floor.z, "floor.z");
-    if (in.floor.z + in.floorAllowance >= in.topZ)
-      throw Error("floor.z plus the floor allowance must be below top_z");
-  } else if (in.floor.kind == Floor::Kind::Expression && in.floor.expression.empty()) {
-    throw Error("floor.expression is empty");
-  } else if (in.floor.kind == Floor::Kind::Brep && in.floor.brep.empty()) {
-    throw Error("floor.brep: no file name");
-  }
-  if (in.finalDepth) {
-    requireFinite(*in.finalDepth, "final_depth");
-    if (*in.finalDepth + in.floorAllowance >= in.topZ)
-      throw Error("final_depth plus the floor allowance must be below top_z");
-  }
-}
-
-// The options of the tool choice, the time model, the grid, covering and stock.
-void validateOptions(const PlanInput& in) {
-  checkGridStep(in.gridStep);
-  for (double v : {in.timeModel.rapidRate, in.timeModel.retractRate})
-    if (!std::isfinite(v) || v <= 0.0) throw Error("time_model: rapid_rate and retract_rate must be > 0");
-  if (!std::isfinite(in.timeModel.toolChangeSeconds) || in.timeModel.toolChangeSeconds < 0.0)
-    throw Error("time_model.tool_change_seconds must be >= 0");
-  const SelectionOptions& so = in.selection;
-  if (!std::isfinite(so.weightTime) || !std::isfinite(so.weightTools) || so.weightTime < 0 || so.weightTools < 0 ||
-      so.weightTime + so.weightTools <= 0)
-    throw Error("selection: weight_time and weight_tools must be >= 0, not both 0");
-  if (!std::isfinite(so.riseFactor) || so.riseFactor <= 1.0) throw Error("selection.rise_factor must be > 1");
-  requireFinite(in.minCoverage, "min_coverage");
-  if (!(in.minCoverage > 0.0 && in.minCoverage <= 1.0)) throw Error("min_coverage must be in (0, 1]");
-  requireFinite(in.contactRatio, "contact_ratio");
-  if (!(in.contactRatio >= 0.5 && in.contactRatio <= 1.0)) throw Error("contact_ratio must be in [0.5, 1]");
-  requireFinite(in.maxWallStock, "max_wall_stock");
-  if (in.maxWallStock < 0.0) throw Error("max_wall_stock must be >= 0 (0: cover down to min_coverage)");
-  requireFinite(in.maxFloorStock, "max_floor_stock");
-  if (in.maxFloorStock < 0.0) throw Error("max_floor_stock must be >= 0 (0: no rest plunges)");
-  requireFinite(in.leadOut, "lead_out");
-  if (in.leadOut < 0.0) throw Error("lead_out must be >= 0 (0: retract straight up)");
-  requireFinite(in.rapidClearance, "rapid_clearance");
-  if (in.rapidClearance <= 0.0) throw Error("rapid_clearance must be > 0");
-  if (in.start) {
-    requireFinite(in.start->x, "start.x");
-    requireFinite(in.start->y, "start.y");
-  }
-  requireFinite(in.maxPlunges, "max_plunges");
-}
-
-}  // namespace
-
-void validate(PlanInput& in) {
-  validateTools(in);
-  validateHeights(in);
-  validateOptions(in);
-  checkScale(in);
-}
-
-Cutter cutterOf(const Tool& t) {
-  return {t.shape, 0.5 * t.diameter, t.shape == CutterShape::Ball ? 0.5 * t.diameter : t.cornerRadius};
-}
-
-Plunge plungeOf(const Tool& t, Vec2 c, double z) {
-  Plunge p;
-  p.x = c.x;
-  p.y = c.y;
-  p.diameter = t.diameter;
-  p.toolId = t.id;
-  p.z = z;
-  return p;
-}
 
 namespace {
 
@@ -173,11 +40,6 @@ std::unique_ptr<FloorSurface> makeFloor(const PlanInput& in) {
   return makeBrepFloor(resolveInputPath(in, in.floor.brep));
 }
 
-int toolIndex(const PlanInput& in, int id) {
-  for (size_t t = 0; t < in.tools.size(); ++t)
-    if (in.tools[t].id == id) return static_cast<int>(t);
-  throw InternalError("a plunge of an unknown tool");
-}
 
 // A floor or a plunger that is not flat: plunges stop at different heights.
 bool isSculptured(const PlanInput& in, const FloorSurface& floor) {
@@ -338,7 +200,11 @@ void floorStock(const PlanInput& in, const Region& region, const FloorSurface& f
   std::vector<Cutter> cutters;
   for (const Tool& t : in.tools) cutters.push_back(cutterOf(t));
   StockGrid grid = stockGrid(in, region, floor, out, cutters.back().radius, progress);
-  for (const Plunge& p : out.plunges) grid.cut({{p.x, p.y}, toolIndex(in, p.toolId), p.z}, cutters[toolIndex(in, p.toolId)]);
+  const ToolTable tools(in.tools);
+  for (const Plunge& p : out.plunges) {
+    const int t = static_cast<int>(tools.indexOf(p.toolId));
+    grid.cut({{p.x, p.y}, t, p.z}, cutters[t]);
+  }
   const bool sculptured = isSculptured(in, floor);
   const StockReport r = measureStock(grid, in.topZ);
   out.stats.maxFloorStockLeft = r.maxFloorStock;
@@ -372,14 +238,15 @@ void floorStock(const PlanInput& in, const Region& region, const FloorSurface& f
   out.stockMap = std::move(m);
 }
 
-// What the final plunges cut, as a covering's result (when the engagement
-// limits replaced the covering's plunges).
+// What the final plunges cut, as a covering's result: the stats describe the
+// plan as made (rest plunges, growth within the limits and levels included).
 CoverResult coverOf(const PlanInput& in, const Plan& out, const Polygons& core) {
   CoverResult c;
+  const ToolTable tools(in.tools);
   std::vector<Circle> circles;
   for (const Plunge& p : out.plunges) {
     circles.push_back({{p.x, p.y}, 0.5 * p.diameter});
-    c.disks.push_back({{p.x, p.y}, 0.5 * p.diameter, toolIndex(in, p.toolId)});
+    c.disks.push_back({{p.x, p.y}, 0.5 * p.diameter, static_cast<int>(tools.indexOf(p.toolId))});
   }
   c.accessibleArea = poly::area(out.accessible);
   c.uncovered = uncoveredRegion(out.accessible, circles);
@@ -402,27 +269,21 @@ void countPlunges(const PlanInput& in, Plan& out) {
   out.stats.plungeCount = static_cast<int>(out.plunges.size());
 }
 
-// core: the accessible region beyond the wall band (empty without a band).
-void coverageStats(const PlanInput& in, const Region& region, const Polygons& core, const CoverResult& cover,
-                   Plan& out) {
+// Coverage, the core beyond the wall band and the wall stock, from what the
+// plan's plunges cut (coverOf).
+void coverageStats(const PlanInput& in, const Region& region, const CoverResult& cover, Plan& out) {
   const double rMax = 0.5 * in.tools.front().diameter;
   out.uncovered = cover.uncovered;
   out.stats.accessibleArea = cover.accessibleArea;
   out.stats.coveredArea = cover.coveredArea;
   out.stats.coverage = cover.accessibleArea > 0 ? cover.coveredArea / cover.accessibleArea : 0.0;
   out.stats.hexReferenceCount = cover.accessibleArea / (kHexCellArea * rMax * rMax);
-  // The core: measured on the covering's own polygons when it planned one,
-  // otherwise (a grid, or no band) from the disks.
+  // The core beyond the wall band; without a band, the whole accessible region.
   Polygons coreLeft = cover.coreUncovered;
   out.stats.coreArea = cover.coreArea;
   if (in.maxWallStock <= 0.0) {
     out.stats.coreArea = cover.accessibleArea;
     coreLeft = cover.uncovered;
-  } else if (in.strategy == Strategy::Grid) {
-    out.stats.coreArea = poly::area(core);
-    std::vector<Circle> disks;
-    for (const CoverDisk& d : cover.disks) disks.push_back({d.center, d.radius});
-    coreLeft = uncoveredRegion(core, disks);
   }
   out.stats.coreCoverage = out.stats.coreArea > 0 ? 1.0 - poly::area(coreLeft) / out.stats.coreArea : 1.0;
   out.stats.maxWallStockLeft = wallStockLeft(region, cover.uncovered, out.accessible, in.radialAllowance);
@@ -486,12 +347,11 @@ Pocket pocketOf(PlanInput& in, Plan& out) {
 // the depth of each (4.4), the rest step in Z, then no plunge below final_depth
 // (held: whether that raised any plunge above the floor).
 std::vector<CutDisk> placeAndDepth(const PlanInput& in, const Pocket& pocket, const FloorSurface& floor,
-                                   const DepthSolver& depths, Plan& out, CoverResult& cover, bool& held,
-                                   const Progress& progress) {
+                                   const DepthSolver& depths, Plan& out, bool& held, const Progress& progress) {
   std::vector<double> radii;
   for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
   progress.stage(0.05, "packing and covering");
-  cover = placePlunges(in, pocket.region, radii, pocket.core, progress);
+  const CoverResult cover = placePlunges(in, pocket.region, radii, pocket.core, progress);
   out.stats.regionArea = poly::area(allowedRegion(pocket.region, in.radialAllowance));
   progress.stage(0.75, "plunge depths");
   std::vector<CutDisk> disks = depthsOf(in, cover, depths, progress);
@@ -506,17 +366,38 @@ std::vector<CutDisk> placeAndDepth(const PlanInput& in, const Pocket& pocket, co
   return disks;
 }
 
+EngagementOptions engagementOptions(const PlanInput& in, const Progress& progress) {
+  EngagementOptions o;
+  o.tools = ToolTable(in.tools);
+  o.radialAllowance = in.radialAllowance;
+  o.floorAllowance = in.floorAllowance;
+  o.topZ = in.topZ;
+  o.maxWallStock = in.maxWallStock;
+  o.maxFloorStock = in.maxFloorStock;
+  o.start = in.start;
+  o.progress = progress;
+  return o;
+}
+
+MotionOptions motionOptions(const PlanInput& in) {
+  MotionOptions o;
+  o.tools = ToolTable(in.tools);
+  o.topZ = in.topZ;
+  o.safeZ = in.safeZ;
+  o.radialAllowance = in.radialAllowance;
+  o.floorAllowance = in.floorAllowance;
+  o.leadOut = in.leadOut;
+  o.stockAwareHeights = in.stockAwareHeights;
+  o.rapidClearance = in.rapidClearance;
+  o.timeModel = in.timeModel;
+  return o;
+}
+
 double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace
-
-std::string resolveInputPath(const PlanInput& in, const std::string& path) {
-  const std::filesystem::path p(path);
-  if (p.is_absolute() || in.baseDir.empty()) return p.string();
-  return (std::filesystem::path(in.baseDir) / p).string();
-}
 
 Plan plan(PlanInput in, const Progress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -543,9 +424,8 @@ Plan planWithTools(PlanInput in, const Progress& progress) {
   const Vec2 lo = pocket.region.minCorner(), hi = pocket.region.maxCorner();
   const DepthSolver depths(*floor, lo, hi,
                            std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)));
-  CoverResult cover;
   bool held = false;
-  const std::vector<CutDisk> disks = placeAndDepth(in, pocket, *floor, depths, out, cover, held, progress);
+  const std::vector<CutDisk> disks = placeAndDepth(in, pocket, *floor, depths, out, held, progress);
 
   progress.stage(0.9, "ordering the plunges");
   sequence(in, disks, out);
@@ -555,12 +435,14 @@ Plan planWithTools(PlanInput in, const Progress& progress) {
                                    [](const Tool& t) { return std::isfinite(engagementLimit(t)); });
   if (limited) {
     progress.stage(0.92, "growing the cut within the engagement limits");
-    HeightField stock = stockOf(in, pocket.region);
-    out.plunges = growWithinLimits(in, pocket.region, depths, out.plunges, stock, progress);
+    HeightField stock = stockOf(in.tools, in.topZ, pocket.region);
+    out.plunges = growWithinLimits(pocket.region, depths, out.plunges, stock, engagementOptions(in, progress));
   }
-  out.plunges = splitIntoLevels(in, out.plunges, out.stats);
-  coverageStats(in, pocket.region, pocket.core, limited ? coverOf(in, out, pocket.core) : cover, out);
-  planMotion(in, pocket.region, depths, out);
+  const MotionOptions motion = motionOptions(in);
+  out.plunges = splitIntoLevels(out.plunges, motion, out.stats);
+  // Measured on the final plunges (the rest step and the limits add to the covering's).
+  coverageStats(in, pocket.region, coverOf(in, out, pocket.core), out);
+  planMotion(pocket.region, depths, out, motion);
   floorStock(in, pocket.region, *floor, out, held, progress);
   countPlunges(in, out);
   out.stats.planningSeconds = secondsSince(t0);

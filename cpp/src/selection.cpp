@@ -10,7 +10,7 @@
 #include "plunge/covering.hpp"
 #include "plunge/error.hpp"
 #include "plunge/limits.hpp"
-#include "plunge/plan.hpp"
+#include "plunge/types.hpp"
 #include "plunge/polygon.hpp"
 
 namespace plunge {

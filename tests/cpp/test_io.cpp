@@ -9,7 +9,11 @@
 #include <sstream>
 
 #include "plunge/error.hpp"
-#include "plunge/io.hpp"
+#include "plunge/gcode.hpp"
+#include "plunge/json.hpp"
+#include "plunge/plan.hpp"
+#include "plunge/svg.hpp"
+#include "plunge/validate.hpp"
 
 using namespace plunge;
 using nlohmann::json;

@@ -6,9 +6,10 @@
 #include <random>
 
 #include "plunge/error.hpp"
-#include "plunge/io.hpp"
+#include "plunge/json.hpp"
 #include "plunge/limits.hpp"
 #include "plunge/plan.hpp"
+#include "plunge/validate.hpp"
 #include "testutil.hpp"
 
 using namespace plunge;

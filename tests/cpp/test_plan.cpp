@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "plunge/error.hpp"
-#include "plunge/io.hpp"
+#include "plunge/json.hpp"
 #include "plunge/limits.hpp"
 #include "plunge/plan.hpp"
 #include "testutil.hpp"

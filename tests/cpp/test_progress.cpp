@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "plunge/io.hpp"
+#include "plunge/json.hpp"
 #include "plunge/plan.hpp"
 #include "plunge/progress.hpp"
 #include "testutil.hpp"

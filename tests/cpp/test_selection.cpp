@@ -4,7 +4,7 @@
 #include <map>
 
 #include "plunge/error.hpp"
-#include "plunge/io.hpp"
+#include "plunge/json.hpp"
 #include "plunge/plan.hpp"
 #include "testutil.hpp"
 

@@ -216,7 +216,7 @@ def heights(mesh_objects, points, top):
 
 def example_document():
     """Phase 1: the shipped example."""
-    from freecad_plugin import PlungeRough, compat
+    from freecad_plugin import PlungeRough, companions, compat
     doc = FreeCAD.openDocument(os.environ["PLUNGE_EXAMPLE_DOC"])
     FreeCADGui.ActiveDocument.ActiveView.viewIsometric()
     FreeCADGui.activateWorkbench(compat.workbench_name())
@@ -224,7 +224,7 @@ def example_document():
     step("example opened")
     job = doc.getObject("Job")
     op = doc.getObject("PlungeRough")
-    comps = PlungeRough.companions(op)
+    comps = companions.companions(op)
     result["example"] = {
         "job_view": type(job.ViewObject.Proxy).__name__ if job.ViewObject.Proxy else None,
         "job_children": sorted(o.Name for o in job.ViewObject.Proxy.claimChildren()) if job.ViewObject.Proxy else [],
@@ -330,7 +330,7 @@ def play_gl_simulator():
 def new_job():
     """Phase 2: a new Job, as a user makes one."""
     import example_part
-    from freecad_plugin import PlungeRough, compat
+    from freecad_plugin import PlungeRough, companions, compat
     doc = FreeCAD.newDocument("PlungeNew")
     part = doc.addObject("Part::Feature", "Part")
     part.Shape = example_part.freeform_part(True)
@@ -456,7 +456,7 @@ def new_job():
     step("undo and redo")
 
     # Delete the 12 mm companion from the tree: the plan goes on without it.
-    comp = next(c for c in PlungeRough.companions(op) if float(c.ToolController.Tool.Diameter) == 12)
+    comp = next(c for c in companions.companions(op) if float(c.ToolController.Tool.Diameter) == 12)
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.Selection.addSelection(comp)
     FreeCADGui.runCommand("Std_Delete")

@@ -13,8 +13,8 @@ CHECK = r"""
 import json, sys, FreeCAD
 import freecad_plugin, plunge
 from freecad_plugin.compat import PathSetupSheet
-from freecad_plugin import PlungeRough
-plan = PlungeRough.planner().plan({"version": 1, "boundary": [[0, 0], [60, 0], [60, 40], [0, 40]],
+from freecad_plugin import PlungeRough, planner
+plan = planner.planner().plan({"version": 1, "boundary": [[0, 0], [60, 0], [60, 40], [0, 40]],
     "tools": [{"id": 1, "diameter": 16}, {"id": 2, "diameter": 6}], "top_z": 0, "safe_z": 5,
     "floor": {"z": -10}})
 print("RESULT=" + json.dumps({"plugin": freecad_plugin.__file__, "plunge": plunge.__file__,

@@ -11,7 +11,7 @@ import parts
 from conftest import build_op
 from gcode import job_program, path_blocks, replay
 from machine_check import assert_machinable, check_program
-from freecad_plugin import PlungeRough, compat
+from freecad_plugin import PlungeRough, companions, compat
 
 
 def plunges_of(job):
@@ -117,7 +117,7 @@ def test_build_input_is_the_planner_input_of_the_properties(doc, tmp_path):
     root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     with open(os.path.join(root, "docs", "plan-input.schema.json")) as f:
         schema = jsonschema.Draft202012Validator(json.load(f))
-    plungers = PlungeRough._tool_controllers(op)
+    plungers = companions.tool_controllers(op)
     faces = PlungeRough.selected_faces(op, plungers)
     before = (op.PlanData, op.Summary, [c.Name for c in op.Path.Commands])
     data = PlungeRough.build_input(op, plungers, faces, str(tmp_path))
@@ -242,7 +242,7 @@ def test_auto_select_tools(doc, tmp_path):
     assert len(plunges) == plan["stats"]["plunge_count"]
     assert sorted(float(tc.Tool.Diameter) for tc, *_ in plunges) == sorted(p["diameter"] for p in plan["plunges"])
     assert {float(tc.Tool.Diameter) for tc, *_ in plunges} == set(chosen)
-    comps = PlungeRough.companions(op)
+    comps = companions.companions(op)
     assert [c for c in comps if not c.Active], "the library holds sizes the selection does not take"
     assert_no_gouge(job.Model.Group[0].Shape, op.Base[0][1], plunges, op.StartDepth.Value, 0.5, 0.3, every=2)
     text = compat.post_job(job, "linuxcnc", "--no-header --no-show-editor")

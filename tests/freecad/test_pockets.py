@@ -10,7 +10,7 @@ import pytest
 
 import parts
 from part_check import check
-from freecad_plugin import PlungeRough
+from freecad_plugin import PlungeRough, companions
 from freecad_plugin.compat import PathJob, post_job
 from gcode import parse_gcode
 
@@ -237,8 +237,8 @@ def test_refused_operation_posts_no_tool_change(doc):
     # The companions (8 and 5 mm) write no tool change and no move.
     changes = [int(w["T"]) for codes, w in parse_gcode(text) if "M6" in codes and "T" in w]
     assert 3 not in changes and 4 not in changes
-    assert not any(c.Active for c in PlungeRough.companions(op))
+    assert not any(c.Active for c in companions.companions(op))
     # Selecting the floor again brings them back.
     op.Base = [(job.Model.Group[0], faces_at(obj.Shape, floor_z(obj, 30)))]
     doc.recompute()
-    assert PlungeRough.plan_of(op) is not None and all(c.Active for c in PlungeRough.companions(op))
+    assert PlungeRough.plan_of(op) is not None and all(c.Active for c in companions.companions(op))

@@ -8,7 +8,7 @@ import pytest
 
 import parts
 from conftest import build_op
-from freecad_plugin import PlungeRough, compat
+from freecad_plugin import PlungeRough, companions, compat
 
 
 def test_setup_sheet_prototype_shows_every_default():
@@ -40,7 +40,7 @@ def test_new_op_ticks_every_plunger_largest_its_own(doc):
     assert float(op.ToolController.Tool.Diameter) == 20
     default = [tc for tc in job.Tools.Group if tc not in tcs]
     assert default and not any(PlungeRough.is_plunger(tc) for tc in default)
-    assert [c.Label for c in PlungeRough.companions(op)] == [op.Label + " T3 12 mm", op.Label + " T4 6 mm"]
+    assert [c.Label for c in companions.companions(op)] == [op.Label + " T3 12 mm", op.Label + " T4 6 mm"]
 
 
 def test_no_plunger_in_the_job_is_a_clear_error(doc):
@@ -70,7 +70,7 @@ def test_deleted_companion_is_never_silent(doc):
     """Without its companion a plunger's plunges would be missing from the
     simulation and the G-code: the operation says so and cuts nothing."""
     job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
-    comp = PlungeRough.companions(op)[0]
+    comp = companions.companions(op)[0]
     doc.removeObject(comp.Name)
     op.touch()
     doc.recompute()
@@ -86,7 +86,7 @@ def test_deleted_companion_is_never_silent(doc):
 
 def test_inactive_operation_takes_its_companions_along(doc):
     job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
-    comps = PlungeRough.companions(op)
+    comps = companions.companions(op)
     op.Active = False
     doc.recompute()
     assert not any(c.Active for c in comps)

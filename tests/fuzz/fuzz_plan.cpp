@@ -10,7 +10,7 @@
 #include <string>
 
 #include "plunge/error.hpp"
-#include "plunge/io.hpp"
+#include "plunge/json.hpp"
 #include "plunge/plan.hpp"
 #include "plunge/region.hpp"
 

@@ -69,16 +69,17 @@ def core_left(data, plan, band):
     return sorted(p.area for p in _pieces(core.difference(disks)))
 
 
-def wall_stock_left(data, plan):
+def wall_stock_left(data, plan, sliver=0.01):
     """The thickest material along the walls the plunges leave, beyond the radial
     allowance: the farthest vertex of the uncovered pieces from the walls (vertices
-    on the accessible outline are on a wall or in a corner no tool reaches)."""
+    on the accessible outline are on a wall or in a corner no tool reaches).
+    Pieces under `sliver` mm^2 are the polygons' approximation of the disks."""
     pocket, radial, accessible, disks = accessible_and_disks(data, plan)
     loops = [data["boundary"]] + data.get("islands", [])
     outline = accessible.boundary
     worst = 0.0
     for piece in _pieces(accessible.difference(disks)):
-        if piece.area < 0.01:
+        if piece.area < sliver:
             continue
         for ring in [piece.exterior] + list(piece.interiors):
             for x, y in ring.coords:

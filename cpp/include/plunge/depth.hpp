@@ -13,16 +13,9 @@
 #include <vector>
 
 #include "plunge/floor.hpp"
+#include "plunge/types.hpp"
 
 namespace plunge {
-
-enum class CutterShape { Flat, Ball, Bull };
-
-struct Cutter {
-  CutterShape shape = CutterShape::Flat;
-  double radius = 0.0;
-  double cornerRadius = 0.0;  // bull nose; a ball's is its radius, a flat one's 0
-};
 
 // Height of the cutter's lower surface above its tip at distance rho from its axis.
 double cutterProfile(const Cutter& cutter, double rho);

@@ -16,22 +16,17 @@
 // within r - rc, so it grows the same way with e <= r - rc, from start holes
 // drilled by a centre-cutting tool of the job.
 #pragma once
+#include <optional>
 #include <vector>
 
 #include "plunge/depth.hpp"
 #include "plunge/heightfield.hpp"
-#include "plunge/plan.hpp"
 #include "plunge/progress.hpp"
 #include "plunge/region.hpp"
+#include "plunge/tools.hpp"
+#include "plunge/types.hpp"
 
 namespace plunge {
-
-// The band a tool may cut in one plunge, from its limit and core (infinite when free).
-double engagementLimit(const Tool& tool);
-// The centre-cutting tool that drills start holes for `tool`: the smallest one
-// at least as wide as its core. Throws plunge::Error naming the fix when the
-// job has none.
-const Tool& startHoleTool(const std::vector<Tool>& tools, const Tool& tool);
 
 // Positions a limited tool grows its cut along (thesis: none; what plunge-mill
 // makers prescribe): the contour of its centre region (every loop, walls and
@@ -49,12 +44,24 @@ std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double
 // staggered by half a step, may run and still cut everything between them.
 double rowSpacing(double r, double step);
 
+// What the growth needs of the job (PlanInput's fields of the same names).
+struct EngagementOptions {
+  ToolTable tools;
+  double radialAllowance = 0.0;
+  double floorAllowance = 0.0;
+  double topZ = 0.0;
+  double maxWallStock = 0.0;   // the wall band the contour keeps (stock.hpp)
+  double maxFloorStock = 0.0;  // over sculptured floors, what the growth leaves to the finisher
+  std::optional<Vec2> start;   // where the machine starts
+  Progress progress;
+};
+
 // The plan's plunges (tools largest first, each tool's in tour order) rebuilt so
 // that every tool keeps its engagement limit and core over removed material.
 // Tools without limits keep their plunges and order. Start holes come first.
 // `stock` starts uncut and is left cut by every returned plunge.
-std::vector<Plunge> growWithinLimits(const PlanInput& in, const Region& region, const DepthSolver& depths,
+std::vector<Plunge> growWithinLimits(const Region& region, const DepthSolver& depths,
                                      const std::vector<Plunge>& ordered, HeightField& stock,
-                                     const Progress& progress = Progress());
+                                     const EngagementOptions& options);
 
 }  // namespace plunge

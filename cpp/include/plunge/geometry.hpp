@@ -28,6 +28,8 @@ inline Vec2 leftNormal(Vec2 d) { return {-d.y, d.x}; }
 
 // A closed polyline: the last point does not repeat the first.
 using Loop = std::vector<Vec2>;
+// Several loops: a region (its outer loop and islands), or pieces of one.
+using Polygons = std::vector<Loop>;
 
 struct Segment {
   Vec2 a, b;

@@ -13,10 +13,9 @@
 
 #include "plunge/covering.hpp"
 #include "plunge/region.hpp"
+#include "plunge/types.hpp"
 
 namespace plunge {
-
-enum class GridPattern { Square, Honeycomb };
 
 struct GridOptions {
   GridPattern pattern = GridPattern::Honeycomb;

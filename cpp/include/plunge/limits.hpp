@@ -8,7 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "plunge/plan.hpp"
+#include "plunge/region.hpp"
+#include "plunge/types.hpp"
 
 namespace plunge {
 

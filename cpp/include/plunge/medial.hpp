@@ -13,6 +13,7 @@
 
 #include "plunge/geometry.hpp"
 #include "plunge/region.hpp"
+#include "plunge/types.hpp"
 
 namespace plunge {
 
@@ -28,21 +29,7 @@ MedialAxis medialAxis(const Region& region);
 // Largest disk inside the region (centre on the medial axis).
 Circle largestInscribedCircle(const MedialAxis& axis);
 
-struct Neck {
-  Vec2 center;    // the medial node
-  double width;   // 2 x its clearance
-  Vec2 a, b;      // the neck line: the two nearest wall points
-  bool island;    // one end on an island
-};
-
 std::vector<Neck> findNecks(const Region& region, const MedialAxis& axis, double riseFactor = 1.5);
-
-struct SubRegion {
-  Polygons shape;
-  double area = 0.0;
-  Circle inscribed;                 // largest disk inside it
-  std::vector<int> necks;           // indices of the necks on its border
-};
 
 // The region cut along the neck lines.
 std::vector<SubRegion> subdivide(const Region& region, const MedialAxis& axis, const std::vector<Neck>& necks);

@@ -18,26 +18,41 @@
 
 #include "plunge/depth.hpp"
 #include "plunge/heightfield.hpp"
-#include "plunge/plan.hpp"
 #include "plunge/region.hpp"
+#include "plunge/tools.hpp"
+#include "plunge/types.hpp"
 
 namespace plunge {
 
+// What the machine's moves need of the job (PlanInput's fields of the same names).
+struct MotionOptions {
+  ToolTable tools;  // largest first
+  double topZ = 0.0;
+  double safeZ = 5.0;
+  double radialAllowance = 0.0;
+  double floorAllowance = 0.0;
+  double leadOut = 0.5;
+  bool stockAwareHeights = true;
+  double rapidClearance = 1.0;
+  TimeModel timeModel;
+};
+
 // Splits the plunges of tools with a flute length into levels (same positions,
 // stepping down); returns the new order and sets stats.levels.
-std::vector<Plunge> splitIntoLevels(const PlanInput& in, const std::vector<Plunge>& ordered,
+std::vector<Plunge> splitIntoLevels(const std::vector<Plunge>& ordered, const MotionOptions& options,
                                     PlanStats& stats);
 
-// The height field every simulation of a plan uses (bounds, spacing).
-HeightField stockOf(const PlanInput& in, const Region& region);
+// The height field every simulation of a plan uses (bounds, spacing), for the
+// tools (largest first) in the region, uncut at topZ.
+HeightField stockOf(const std::vector<Tool>& tools, double topZ, const Region& region);
 
 // Fills every plunge's approachZ, retractZ, leadOut and engagement, counts the
 // plunges beyond a tool's limits (stats.overEngaged, thinCuts) and adds a
 // warning for each kind; travel length and both time estimates.
-void planMotion(const PlanInput& in, const Region& region, const DepthSolver& depths, Plan& plan);
+void planMotion(const Region& region, const DepthSolver& depths, Plan& plan, const MotionOptions& options);
 
 // Minutes of a plan's moves as planMotion laid them out; atSafeHeight: as if
 // every approach and retract went to safe_z.
-double motionMinutes(const Plan& plan, const std::vector<Tool>& tools, const PlanInput& in, bool atSafeHeight);
+double motionMinutes(const Plan& plan, const MotionOptions& options, bool atSafeHeight);
 
 }  // namespace plunge

@@ -12,6 +12,7 @@
 
 #include "plunge/geometry.hpp"
 #include "plunge/region.hpp"
+#include "plunge/types.hpp"
 
 namespace plunge {
 
@@ -20,21 +21,6 @@ struct PackedDisk {
   double radius = 0.0;         // the plunger's radius: the disk it cuts
   double contactRadius = 0.0;  // radius used for circle-to-circle tangency while packing
   int tool = 0;                // index into the radii given to packMaxHoleDegree
-};
-
-// Which corner placement comes next.
-enum class PackingOrder {
-  // The thesis: maximum hole degree, ties by lowest y then x.
-  HoleDegree,
-  // Placements on one hexagonal lattice (spacing 2 x contact radius, anchored at
-  // the first circle and aligned with its longer wall) first, then maximum hole
-  // degree. Fronts growing around islands stay in phase, so the interior stays
-  // the thinnest covering lattice instead of breaking into patches whose holes
-  // each cost a gap plunge.
-  Lattice,
-  // Both, in parallel, keeping the plan with fewer plunges: a choice of the plan
-  // pipeline (plan.cpp); packMaxHoleDegree itself takes HoleDegree or Lattice.
-  Auto,
 };
 
 struct PackingOptions {

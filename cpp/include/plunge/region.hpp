@@ -12,8 +12,6 @@
 
 namespace plunge {
 
-using Polygons = std::vector<Loop>;
-
 class Region {
  public:
   struct Vertex {

@@ -22,47 +22,9 @@
 
 #include "plunge/medial.hpp"
 #include "plunge/progress.hpp"
+#include "plunge/types.hpp"
 
 namespace plunge {
-
-struct PlanInput;
-struct Plan;
-struct Tool;
-
-struct TimeModel {
-  double rapidRate = 10000.0;       // mm/min, XY moves between plunges
-  double retractRate = 5000.0;      // mm/min, back up to the safe height
-  double toolChangeSeconds = 20.0;  // per tool used
-};
-
-struct SelectionOptions {
-  double weightTime = 1.0;   // weights of the thesis's weighted time (minutes)
-  double weightTools = 0.0;  // ... and of the number of tools
-  double riseFactor = 1.5;   // neck: clearance rises this much on both sides
-};
-
-struct ToolSetResult {
-  std::vector<double> diameters;
-  bool evaluated = false;  // planned; otherwise pruned by its bound
-  bool subtree = false;    // pruned with every set that adds smaller candidates to it
-  int plunges = 0;
-  double coverage = 0.0;
-  double minutes = 0.0;     // planned time, or the lower bound when pruned
-  double weighted = 0.0;
-  double bound = 0.0;       // the branch and bound's lower bound on `weighted`
-  std::string refused;      // why this set cannot be planned (not evaluated, not pruned)
-};
-
-struct ToolSelection {
-  Circle inscribed;
-  std::vector<Neck> necks;
-  std::vector<SubRegion> parts;
-  std::vector<int> order;  // sub-region visiting order (MST)
-  std::vector<double> candidates;
-  std::vector<ToolSetResult> sets;
-  std::vector<double> chosen;
-  std::vector<std::string> reasoning;
-};
 
 // Plans one tool set: an input with its tools given (plan.hpp's planWithTools
 // after validating it).

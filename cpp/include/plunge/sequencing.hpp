@@ -13,14 +13,9 @@
 #include <vector>
 
 #include "plunge/geometry.hpp"
+#include "plunge/types.hpp"
 
 namespace plunge {
-
-enum class TourMethod {
-  LocalSearch,  // construction + 2-opt/Or-opt + iterated local search (default)
-  Annealing,    // the thesis: simulated annealing on 2-opt moves
-};
-
 
 struct TourOptions {
   TourMethod method = TourMethod::LocalSearch;

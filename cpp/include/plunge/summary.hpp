@@ -1,0 +1,15 @@
+// The plan in one line for people: what the CLI prints, the Python module
+// returns and the FreeCAD addon shows in its report view.
+#pragma once
+#include <string>
+
+#include "plunge/types.hpp"
+
+namespace plunge {
+
+// Plunges per tool, coverage and travel, then the stock left (wall band, floor stock max/mean,
+// volumes removed and left), rest plunges, start holes, levels, lead-outs and
+// the estimated time.
+std::string planSummary(const Plan& plan);
+
+}  // namespace plunge

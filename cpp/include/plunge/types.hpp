@@ -1,0 +1,260 @@
+// The data model every layer shares (docs/plan-format.md): tools, the floor,
+// the plan's input and options, plunges, statistics and the plan. Plain values
+// with no behaviour; it depends on geometry alone, so that every module can take
+// these types without including the pipeline (plan.hpp).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "plunge/geometry.hpp"
+
+namespace plunge {
+
+// --- tools ---------------------------------------------------------------------
+
+enum class CutterShape { Flat, Ball, Bull };
+
+struct Cutter {
+  CutterShape shape = CutterShape::Flat;
+  double radius = 0.0;
+  double cornerRadius = 0.0;  // bull nose; a ball's is its radius, a flat one's 0
+};
+
+struct Tool {
+  double diameter = 0.0;
+  int id = 0;             // tool number in G-code
+  double feed = 200.0;    // plunge feed, mm/min
+  CutterShape shape = CutterShape::Flat;
+  double cornerRadius = 0.0;  // bull nose only
+  // A real plunge mill (engagement.hpp, motion.hpp); 0 means no limit.
+  double maxEngagement = 0.0;  // "max_engagement": widest radial band one plunge may cut, mm
+  double minEngagement = 0.0;  // "min_engagement": narrower cuts deflect the tool into the hole beside
+  bool centerCutting = true;   // "center_cutting": false for indexable plunge cutters
+  double coreDiameter = 0.0;   // "core_diameter": the part of a non-centre-cutting tool that does not cut
+  double fluteLength = 0.0;    // "flute_length": deepest cut in one plunge, mm
+};
+
+// --- the input's options ------------------------------------------------------
+
+// "strategy": pack and cover (the thesis) or a fixed grid (grid.hpp).
+enum class Strategy { Packing, Grid };
+
+// Which corner placement comes next.
+enum class PackingOrder {
+  // The thesis: maximum hole degree, ties by lowest y then x.
+  HoleDegree,
+  // Placements on one hexagonal lattice (spacing 2 x contact radius, anchored at
+  // the first circle and aligned with its longer wall) first, then maximum hole
+  // degree. Fronts growing around islands stay in phase, so the interior stays
+  // the thinnest covering lattice instead of breaking into patches whose holes
+  // each cost a gap plunge.
+  Lattice,
+  // Both, in parallel, keeping the plan with fewer plunges: a choice of the plan
+  // pipeline (plan.cpp); packMaxHoleDegree itself takes HoleDegree or Lattice.
+  Auto,
+};
+
+enum class TourMethod {
+  LocalSearch,  // construction + 2-opt/Or-opt + iterated local search (default)
+  Annealing,    // the thesis: simulated annealing on 2-opt moves
+};
+
+
+enum class GridPattern { Square, Honeycomb };
+
+// The time model behind the tool choice and the plan's estimate (selection.hpp,
+// motion.hpp), and the choice's weights.
+struct TimeModel {
+  double rapidRate = 10000.0;       // mm/min, XY moves between plunges
+  double retractRate = 5000.0;      // mm/min, back up to the safe height
+  double toolChangeSeconds = 20.0;  // per tool used
+};
+
+struct SelectionOptions {
+  double weightTime = 1.0;   // weights of the thesis's weighted time (minutes)
+  double weightTools = 0.0;  // ... and of the number of tools
+  double riseFactor = 1.5;   // neck: clearance rises this much on both sides
+};
+
+// --- the input -----------------------------------------------------------------
+
+struct Floor {
+  enum class Kind { Flat, Expression, Brep } kind = Kind::Flat;
+  double z = 0.0;
+  std::string expression;
+  std::string brep;  // a BREP file; a relative path starts at PlanInput::baseDir (resolveInputPath)
+};
+
+struct PlanInput {
+  Loop boundary;
+  std::vector<Loop> islands;
+  std::vector<Tool> tools;  // sorted by decreasing diameter once validated
+  double topZ = 0.0;
+  double safeZ = 5.0;
+  Floor floor;
+  double radialAllowance = 0.0;
+  double floorAllowance = 0.0;
+  Strategy strategy = Strategy::Packing;
+  std::uint64_t seed = 0;
+  // Extensions beyond the contract (all optional in JSON):
+  double minCoverage = 0.996;  // "min_coverage": stop covering wall material here
+  double contactRatio = 0.86;  // "contact_ratio": packing tangency radius / tool radius
+  // "packing_order": "hole_degree" (the thesis), "lattice", or "auto": both, keep the better plan.
+  PackingOrder packingOrder = PackingOrder::Auto;
+  std::optional<Vec2> start;   // "start": where the machine starts (default: first boundary point)
+  TourMethod sequencing = TourMethod::LocalSearch;  // "sequencing": or "annealing" (the thesis)
+  // Where a relative floor.brep path starts: the input file's folder when read
+  // from a file (readPlanInput), otherwise (empty) the current directory.
+  std::string baseDir;
+  // "tools": "auto": the plungers are chosen from `library` ("tool_library").
+  bool autoTools = false;
+  std::vector<Tool> library;
+  SelectionOptions selection;  // "selection": {"weight_time", "weight_tools", "rise_factor"}
+  TimeModel timeModel;         // "time_model": {"rapid_rate", "retract_rate", "tool_change_seconds"}
+  // "strategy": "grid" with "grid": {"pattern": "honeycomb" | "square", "step": fraction of the diameter}.
+  GridPattern gridPattern = GridPattern::Honeycomb;
+  double gridStep = 0.0;
+  // Stock left for the finisher (stock.hpp): "max_wall_stock", mm beyond the
+  // radial allowance: every point farther from the walls is cut (0: cover down
+  // to min_coverage instead). "max_floor_stock", mm above floor + floor
+  // allowance: plunges are added where a sculptured floor keeps more (0: none added).
+  double maxWallStock = 1.0;
+  double maxFloorStock = 1.0;
+  // Motion of a real machine (motion.hpp). "lead_out": horizontal move toward
+  // cleared space before each retract, mm (0: none). "stock_aware_heights":
+  // rapid down to "rapid_clearance" above the stock still there and retract
+  // only as high as the next move needs; false: every move at safe_z.
+  double leadOut = 0.5;
+  bool stockAwareHeights = true;
+  double rapidClearance = 1.0;
+  // "max_plunges": refuse inputs estimated to need more (limits.hpp).
+  double maxPlunges = 200000;
+  // "final_depth": no plunge stops below final_depth + the floor allowance
+  // (FreeCAD: the operation's final depth; absent: the floor alone decides).
+  std::optional<double> finalDepth;
+};
+
+// --- the plan --------------------------------------------------------------------
+
+struct Plunge {
+  double x = 0.0, y = 0.0;
+  double diameter = 0.0;
+  int toolId = 0;
+  double z = 0.0;
+  // How the machine gets there and away (motion.hpp): rapid down to approachZ,
+  // feed to z, feed to leadOut (if any), rapid up to retractZ and on to the next
+  // plunge at that height.
+  double approachZ = 0.0;
+  double retractZ = 0.0;
+  std::optional<Vec2> leadOut;
+  bool startHole = false;   // a centre-cutting hole for a non-centre-cutting plunger
+  bool start = false;       // into solid (centre-cutting) or a start hole: no engagement limit
+  double engagement = 0.0;  // radial engagement met, mm (engagement.hpp)
+  int level = 0;            // 0 for the first level (flute length, motion.hpp)
+};
+
+struct ToolCount {
+  int toolId = 0;
+  double diameter = 0.0;
+  int count = 0;
+};
+
+struct PlanStats {
+  int plungeCount = 0;
+  std::vector<ToolCount> perTool;
+  double regionArea = 0.0;      // pocket after the radial allowance
+  double accessibleArea = 0.0;  // the part of it the smallest tool reaches
+  double coveredArea = 0.0;
+  double coverage = 0.0;
+  double travelLength = 0.0;
+  double planningSeconds = 0.0;
+  // Reference: plunges of the largest tool a hexagonal covering of the
+  // accessible area would need (area / (2.598 r^2)), a reference count, not a bound.
+  double hexReferenceCount = 0.0;
+  double estimatedMinutes = 0.0;  // the time model's estimate (selection.hpp)
+  // Stock left (stock.hpp). The core: the accessible region farther than
+  // allowance + max_wall_stock from the walls (all of it when the band is 0).
+  double coreArea = 0.0;
+  double coreCoverage = 0.0;
+  double maxWallStockLeft = 0.0;   // thickest material left along the walls, beyond the allowance
+  double maxFloorStockLeft = 0.0;  // highest stock above floor + allowance where plunges cut
+  double meanFloorStock = 0.0;
+  double volumeRemoved = 0.0;  // mm^3
+  double volumeLeft = 0.0;     // mm^3: the pocket down to floor + allowance, minus what is removed
+  int restPlunges = 0;         // plunges added by the rest step in Z
+  // Real plunge mills (engagement.hpp, motion.hpp).
+  int startHoles = 0;           // start holes drilled for non-centre-cutting plungers
+  int overEngaged = 0;          // plunges (not starts) cutting wider than their tool's max_engagement
+  int thinCuts = 0;             // plunges cutting narrower than their tool's min_engagement
+  int leadOuts = 0;             // plunges with a lead-out (motion.hpp)
+  int noLeadOutMaterial = 0;    // without one: every way out bites deeper than half the lead-out, or the floor rises
+  int noLeadOutWalls = 0;       // without one: no way out keeps the allowance to walls and islands
+  int levels = 1;               // most levels any tool needs for its flute length
+  double minutesAtSafeHeight = 0.0;  // the time model with every move at safe_z
+  double boundaryTolerance = 0.0;  // mm the walls were simplified by (limits.hpp), added to the radial allowance
+};
+
+// The floor stock left, sampled on a raster (for the plan's picture).
+struct StockMap {
+  Vec2 origin;
+  double spacing = 0.0;
+  size_t nx = 0, ny = 0;
+  std::vector<float> stock;  // row-major; NaN where nothing was cut
+};
+
+// The automatic tool choice's report (selection.hpp): the pocket's necks and
+// sub-regions (medial.hpp) and every tool set tried.
+struct Neck {
+  Vec2 center;    // the medial node
+  double width;   // 2 x its clearance
+  Vec2 a, b;      // the neck line: the two nearest wall points
+  bool island;    // one end on an island
+};
+
+struct SubRegion {
+  Polygons shape;
+  double area = 0.0;
+  Circle inscribed;                 // largest disk inside it
+  std::vector<int> necks;           // indices of the necks on its border
+};
+
+struct ToolSetResult {
+  std::vector<double> diameters;
+  bool evaluated = false;  // planned; otherwise pruned by its bound
+  bool subtree = false;    // pruned with every set that adds smaller candidates to it
+  int plunges = 0;
+  double coverage = 0.0;
+  double minutes = 0.0;     // planned time, or the lower bound when pruned
+  double weighted = 0.0;
+  double bound = 0.0;       // the branch and bound's lower bound on `weighted`
+  std::string refused;      // why this set cannot be planned (not evaluated, not pruned)
+};
+
+struct ToolSelection {
+  Circle inscribed;
+  std::vector<Neck> necks;
+  std::vector<SubRegion> parts;
+  std::vector<int> order;  // sub-region visiting order (MST)
+  std::vector<double> candidates;
+  std::vector<ToolSetResult> sets;
+  std::vector<double> chosen;
+  std::vector<std::string> reasoning;
+};
+
+struct Plan {
+  std::vector<Plunge> plunges;  // execution order: tools largest first
+  PlanStats stats;
+  // For drawing: the accessible region and what the plunges leave uncovered.
+  Polygons accessible;
+  Polygons uncovered;
+  std::optional<ToolSelection> selection;  // with "tools": "auto"
+  // What the user should know about a plan that is valid but short of what was
+  // asked (for example coverage below min_coverage); JSON "warnings".
+  std::vector<std::string> warnings;
+  std::optional<StockMap> stockMap;  // sculptured floors only
+};
+
+}  // namespace plunge

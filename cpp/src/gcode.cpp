@@ -1,0 +1,45 @@
+#include "plunge/gcode.hpp"
+
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+namespace plunge {
+
+std::string planToGcode(const PlanInput& input, const Plan& plan) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(4);
+  s << "(PlungeRough: " << plan.stats.plungeCount << " plunges, coverage " << std::setprecision(2)
+    << 100.0 * plan.stats.coverage << " %)\n"
+    << std::setprecision(4);
+  s << "G21 G90 G17\n";
+  std::map<int, double> feed;
+  for (const Tool& t : input.autoTools ? input.library : input.tools) feed[t.id] = t.feed;
+  int current = -1;
+  for (const Plunge& p : plan.plunges) {
+    if (p.toolId != current) {
+      if (current >= 0) s << "M5\n";
+      s << "G0 Z" << input.safeZ << "\n";
+      s << "(T" << p.toolId << ": plunger diameter " << p.diameter << ")\n";
+      s << "T" << p.toolId << " M6\n";
+      s << "M3\n";
+      s << "G0 Z" << input.safeZ << "\n";
+      current = p.toolId;
+    }
+    if (p.startHole) s << "(start hole)\n";
+    // Rapid over at the last retract height, down to the approach height, feed
+    // through the material, lead out, rapid up only as high as the next move needs.
+    s << "G0 X" << p.x << " Y" << p.y << "\n";
+    s << "G0 Z" << p.approachZ << "\n";
+    s << "G1 Z" << p.z << " F" << feed[p.toolId] << "\n";
+    if (p.leadOut) s << "G1 X" << p.leadOut->x << " Y" << p.leadOut->y << "\n";
+    s << "G0 Z" << p.retractZ << "\n";
+  }
+  if (current >= 0) s << "M5\n";
+  s << "M30\n";
+  return s.str();
+}
+
+
+
+}  // namespace plunge

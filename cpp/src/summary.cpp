@@ -1,0 +1,35 @@
+#include "plunge/summary.hpp"
+
+#include <iomanip>
+#include <sstream>
+
+namespace plunge {
+
+std::string planSummary(const Plan& plan) {
+  const PlanStats& st = plan.stats;
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(2) << st.plungeCount << " plunges (";
+  for (size_t i = 0; i < st.perTool.size(); ++i)
+    s << (i ? ", " : "") << "T" << st.perTool[i].toolId << " " << std::defaultfloat << std::setprecision(6)
+      << st.perTool[i].diameter << std::fixed << std::setprecision(2) << " mm: " << st.perTool[i].count;
+  s << "), coverage " << 100 * st.coverage << " %, travel " << std::setprecision(0) << st.travelLength << " mm"
+    << std::setprecision(2) << "; stock left: walls up to " << st.maxWallStockLeft << " mm (" << 100 * st.coreCoverage
+    << " % of the core cut), floor up to " << st.maxFloorStockLeft << " mm (mean " << st.meanFloorStock << " mm); "
+    << std::setprecision(1) << st.volumeRemoved / 1000 << " cm3 removed, " << st.volumeLeft / 1000 << " cm3 left";
+  if (st.restPlunges) s << "; " << st.restPlunges << " plunges added for the floor stock";
+  if (st.startHoles) s << "; " << st.startHoles << " start holes";
+  if (st.levels > 1) s << "; " << st.levels << " levels (flute length)";
+  if (const int without = st.noLeadOutMaterial + st.noLeadOutWalls; st.leadOuts + without > 0) {
+    s << "; lead-outs on " << st.leadOuts << " plunges";
+    if (without)
+      s << " (none on " << st.noLeadOutMaterial << " with material all round, " << st.noLeadOutWalls
+        << " with no room at the walls)";
+  }
+  s << "; about " << st.estimatedMinutes << " min";
+  if (st.minutesAtSafeHeight > st.estimatedMinutes + 0.05)
+    s << " (" << st.minutesAtSafeHeight - st.estimatedMinutes << " min saved by stock-aware heights)";
+  return s.str();
+}
+
+
+}  // namespace plunge

@@ -1,0 +1,146 @@
+#include "plunge/validate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <string>
+
+#include "plunge/depth.hpp"
+#include "plunge/error.hpp"
+#include "plunge/grid.hpp"
+#include "plunge/limits.hpp"
+#include "plunge/tools.hpp"
+
+namespace plunge {
+
+namespace {
+
+void requireFinite(double v, const std::string& what) {
+  if (!std::isfinite(v)) throw Error(what + " is not a finite number");
+}
+
+// A real plunge mill's limits (engagement.hpp, motion.hpp); 0 is no limit.
+void validateMill(const Tool& t, const std::string& name) {
+  for (double v : {t.maxEngagement, t.minEngagement, t.coreDiameter, t.fluteLength})
+    if (!std::isfinite(v) || v < 0.0)
+      throw Error(name + ": max_engagement, min_engagement, core_diameter and flute_length must be >= 0");
+  if (t.maxEngagement > 0.0 && t.maxEngagement < 0.05 * t.diameter)
+    throw Error(name + ".max_engagement is below 5 % of the diameter: too many plunges to plan (is it in mm?)");
+  if (t.minEngagement >= t.diameter) throw Error(name + ".min_engagement must be below the diameter");
+  if (t.maxEngagement > 0.0 && t.minEngagement > t.maxEngagement)
+    throw Error(name + ".min_engagement is above its max_engagement");
+  if (t.centerCutting && t.coreDiameter > 0.0)
+    throw Error(name + ".core_diameter is for tools that do not cut at the centre (\"center_cutting\": false)");
+  if (!t.centerCutting && !(t.coreDiameter > 0.0 && t.coreDiameter < 0.9 * t.diameter))
+    throw Error(name + ": a tool that does not cut at the centre needs its core_diameter, above 0 and below 90 % of"
+                       " the diameter");
+  if (t.fluteLength > 0.0 && t.fluteLength <= cutterProfile(cutterOf(t), 0.5 * t.diameter) + 0.1)
+    throw Error(name + ".flute_length must exceed the corner radius by 0.1 mm or more");
+}
+
+// Each tool's numbers, then the tools sorted largest first.
+void validateTools(PlanInput& in) {
+  if (in.tools.empty()) throw Error(in.autoTools ? "tool_library: at least one tool is required"
+                                                 : "tools: at least one tool is required");
+  std::set<int> ids;
+  std::set<double> diameters;
+  for (size_t i = 0; i < in.tools.size(); ++i) {
+    const Tool& t = in.tools[i];
+    const std::string name = (in.autoTools ? "tool_library[" : "tools[") + std::to_string(i) + "]";
+    requireFinite(t.diameter, name + ".diameter");
+    if (t.diameter <= 0.0) throw Error(name + ".diameter must be > 0");
+    requireFinite(t.feed, name + ".feed");
+    if (t.feed <= 0.0) throw Error(name + ".feed must be > 0");
+    if (t.id <= 0 || t.id > kMaxToolId)
+      throw Error(name + ".id must be a positive integer up to " + std::to_string(kMaxToolId));
+    if (!ids.insert(t.id).second) throw Error(name + ".id " + std::to_string(t.id) + " is used twice");
+    if (!diameters.insert(t.diameter).second)
+      throw Error(name + ".diameter " + std::to_string(t.diameter) + " is given twice");
+    if (t.shape == CutterShape::Bull) {
+      requireFinite(t.cornerRadius, name + ".corner_radius");
+      if (!(t.cornerRadius > 0 && t.cornerRadius <= t.diameter / 2))
+        throw Error(name + ".corner_radius must be > 0 and at most half the diameter");
+    } else if (t.cornerRadius != 0.0) {
+      throw Error(name + ".corner_radius is for bull-nose tools (\"shape\": \"bull\")");
+    }
+    validateMill(t, name);
+  }
+  std::stable_sort(in.tools.begin(), in.tools.end(),
+                   [](const Tool& a, const Tool& b) { return a.diameter > b.diameter; });
+  for (const Tool& t : in.tools)
+    if (!t.centerCutting) startHoleTool(in.tools, t);  // throws naming the fix
+}
+
+// Heights and the floor.
+void validateHeights(const PlanInput& in) {
+  requireFinite(in.topZ, "top_z");
+  requireFinite(in.safeZ, "safe_z");
+  requireFinite(in.radialAllowance, "allowance.radial");
+  requireFinite(in.floorAllowance, "allowance.floor");
+  if (in.radialAllowance < 0.0) throw Error("allowance.radial must be >= 0");
+  if (in.floorAllowance < 0.0) throw Error("allowance.floor must be >= 0");
+  if (in.safeZ <= in.topZ) throw Error("safe_z must be above top_z");
+  if (in.floor.kind == Floor::Kind::Flat) {
+    requireFinite(in.floor.z, "floor.z");
+    if (in.floor.z + in.floorAllowance >= in.topZ)
+      throw Error("floor.z plus the floor allowance must be below top_z");
+  } else if (in.floor.kind == Floor::Kind::Expression && in.floor.expression.empty()) {
+    throw Error("floor.expression is empty");
+  } else if (in.floor.kind == Floor::Kind::Brep && in.floor.brep.empty()) {
+    throw Error("floor.brep: no file name");
+  }
+  if (in.finalDepth) {
+    requireFinite(*in.finalDepth, "final_depth");
+    if (*in.finalDepth + in.floorAllowance >= in.topZ)
+      throw Error("final_depth plus the floor allowance must be below top_z");
+  }
+}
+
+// The options of the tool choice, the time model, the grid, covering and stock.
+void validateOptions(const PlanInput& in) {
+  checkGridStep(in.gridStep);
+  for (double v : {in.timeModel.rapidRate, in.timeModel.retractRate})
+    if (!std::isfinite(v) || v <= 0.0) throw Error("time_model: rapid_rate and retract_rate must be > 0");
+  if (!std::isfinite(in.timeModel.toolChangeSeconds) || in.timeModel.toolChangeSeconds < 0.0)
+    throw Error("time_model.tool_change_seconds must be >= 0");
+  const SelectionOptions& so = in.selection;
+  if (!std::isfinite(so.weightTime) || !std::isfinite(so.weightTools) || so.weightTime < 0 || so.weightTools < 0 ||
+      so.weightTime + so.weightTools <= 0)
+    throw Error("selection: weight_time and weight_tools must be >= 0, not both 0");
+  if (!std::isfinite(so.riseFactor) || so.riseFactor <= 1.0) throw Error("selection.rise_factor must be > 1");
+  requireFinite(in.minCoverage, "min_coverage");
+  if (!(in.minCoverage > 0.0 && in.minCoverage <= 1.0)) throw Error("min_coverage must be in (0, 1]");
+  requireFinite(in.contactRatio, "contact_ratio");
+  if (!(in.contactRatio >= 0.5 && in.contactRatio <= 1.0)) throw Error("contact_ratio must be in [0.5, 1]");
+  requireFinite(in.maxWallStock, "max_wall_stock");
+  if (in.maxWallStock < 0.0) throw Error("max_wall_stock must be >= 0 (0: cover down to min_coverage)");
+  requireFinite(in.maxFloorStock, "max_floor_stock");
+  if (in.maxFloorStock < 0.0) throw Error("max_floor_stock must be >= 0 (0: no rest plunges)");
+  requireFinite(in.leadOut, "lead_out");
+  if (in.leadOut < 0.0) throw Error("lead_out must be >= 0 (0: retract straight up)");
+  requireFinite(in.rapidClearance, "rapid_clearance");
+  if (in.rapidClearance <= 0.0) throw Error("rapid_clearance must be > 0");
+  if (in.start) {
+    requireFinite(in.start->x, "start.x");
+    requireFinite(in.start->y, "start.y");
+  }
+  requireFinite(in.maxPlunges, "max_plunges");
+}
+
+}  // namespace
+
+void validate(PlanInput& in) {
+  validateTools(in);
+  validateHeights(in);
+  validateOptions(in);
+  checkScale(in);
+}
+
+std::string resolveInputPath(const PlanInput& in, const std::string& path) {
+  const std::filesystem::path p(path);
+  if (p.is_absolute() || in.baseDir.empty()) return p.string();
+  return (std::filesystem::path(in.baseDir) / p).string();
+}
+
+}  // namespace plunge

@@ -1,0 +1,80 @@
+"""The library's layers (README, "How it plans"): every #include of cpp/ names a
+file of its own layer or below, and every file is in the drawing."""
+import os
+import re
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+CPP = os.path.join(ROOT, "cpp")
+
+
+def layers():
+    """{module: layer} from the README's drawing (the block after <!-- layers -->)."""
+    text = open(os.path.join(ROOT, "README.md")).read()
+    block = text.split("<!-- layers -->", 1)[1].split("```text", 1)[1].split("```", 1)[0]
+    out = {}
+    for line in block.strip().splitlines():
+        m = re.match(r"layer (\d+): ([^(]*)", line)
+        assert m, line
+        for name in m.group(2).split():
+            assert name not in out, "%s is drawn twice" % name
+            out[name] = int(m.group(1))
+    return out
+
+
+def module_of(path):
+    """The module a file of cpp/ belongs to: include/plunge/x.hpp and src/x.cpp
+    are x; the front ends are their paths."""
+    rel = os.path.relpath(path, CPP)
+    if rel.startswith(("cli", "python")):
+        return rel
+    return os.path.splitext(os.path.basename(rel))[0]
+
+
+def sources():
+    for folder, _, files in os.walk(CPP):
+        for f in files:
+            if f.endswith((".hpp", ".cpp")):
+                yield os.path.join(folder, f)
+
+
+def includes(path):
+    """The project's files a file includes: "plunge/x.hpp" or a src/ header "x.hpp"."""
+    for m in re.finditer(r'^#include "([^"]+)"', open(path).read(), re.M):
+        yield os.path.splitext(os.path.basename(m.group(1)))[0]
+
+
+def test_every_file_is_drawn():
+    drawn = layers()
+    missing = sorted({module_of(p) for p in sources()} - set(drawn))
+    assert not missing, "not in the README's layer drawing: %s" % missing
+    stale = sorted(set(drawn) - {module_of(p) for p in sources()})
+    assert not stale, "drawn but not in cpp/: %s" % stale
+
+
+def violations(paths, drawn):
+    wrong = []
+    for path in paths:
+        own = drawn[module_of(path)]
+        for name in includes(path):
+            if drawn[name] > own:
+                wrong.append("%s (layer %d) includes %s (layer %d)" % (os.path.relpath(path, ROOT), own, name,
+                                                                       drawn[name]))
+    return wrong
+
+
+def test_no_file_includes_a_layer_above_its_own():
+    wrong = violations(sources(), layers())
+    assert not wrong, "\n".join(wrong)
+
+
+def test_the_check_sees_a_layer_above(tmp_path):
+    """The check itself: the data model including the pipeline is caught."""
+    global CPP
+    header = tmp_path / "include" / "plunge" / "types.hpp"
+    header.parent.mkdir(parents=True)
+    header.write_text('#pragma once\n#include "plunge/geometry.hpp"\n#include "plunge/plan.hpp"\n')
+    saved, CPP = CPP, str(tmp_path)
+    try:
+        assert [w.endswith("includes plan (layer 6)") for w in violations([str(header)], layers())] == [True]
+    finally:
+        CPP = saved
