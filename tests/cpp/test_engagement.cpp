@@ -75,24 +75,6 @@ TEST(Engagement, NonCentreCuttingToolsStartOnDrilledHoles) {
   }
 }
 
-TEST(Engagement, LimitFromTheCore) {
-  Tool t{25, 1, 100};
-  EXPECT_TRUE(std::isinf(engagementLimit(t)));
-  t.centerCutting = false;
-  t.coreDiameter = 9;
-  EXPECT_DOUBLE_EQ(engagementLimit(t), 8.0);
-  t.maxEngagement = 5;
-  EXPECT_DOUBLE_EQ(engagementLimit(t), 5.0);
-}
-
-TEST(Engagement, StartHolesNeedACentreCuttingToolAsWideAsTheCore) {
-  Tool cutter{25, 1, 100};
-  cutter.centerCutting = false;
-  cutter.coreDiameter = 10;
-  EXPECT_THROW(startHoleTool({cutter, {8, 2, 100}}, cutter), Error);
-  EXPECT_EQ(startHoleTool({cutter, {16, 3, 100}, {12, 2, 100}, {8, 4, 100}}, cutter).id, 2);
-}
-
 // The contour and rows a limited tool grows along cut everything its centres
 // reach: disks on every position cover the centre region grown by the radius
 // (scallops aside), with rows no closer than the row bound's 0.87 D.

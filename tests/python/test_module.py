@@ -72,6 +72,27 @@ def test_bad_input_raises_value_error(plunge, change, message):
         plunge.plan(data)
 
 
+def test_errors_by_kind(plunge):
+    """Bad input is a ValueError; a fault of the planner (plunge::InternalError)
+    a RuntimeError, never taken for the user's mistake."""
+    assert issubclass(plunge.PlanError, ValueError) and not issubclass(plunge.PlanError, RuntimeError)
+    assert issubclass(plunge.InternalError, RuntimeError) and not issubclass(plunge.InternalError, ValueError)
+
+
+def test_summary_and_start_hole_tools(plunge):
+    data = load_shape("islands")
+    plan = plunge.plan(data)
+    s = plan["stats"]
+    summary = plan["summary"]
+    assert summary.startswith("%d plunges (" % s["plunge_count"]) and "coverage %.2f %%" % (100 * s["coverage"]) in summary
+    assert "walls up to %.2f mm" % s["max_wall_stock_left"] in summary and "about %.1f min" % s["estimated_minutes"] in summary
+    tools = [{"id": 1, "diameter": 20, "center_cutting": False, "core_diameter": 8},
+             {"id": 2, "diameter": 10}, {"id": 3, "diameter": 6}, {"id": 4, "diameter": 12}]
+    assert plunge.start_hole_tools(tools) == {1: 2}  # the smallest centre-cutting tool as wide as the core
+    with pytest.raises(ValueError, match="centre-cutting tool at least 8"):
+        plunge.start_hole_tools(tools[:1] + tools[2:3])
+
+
 def test_non_string_keys(plunge):
     with pytest.raises(ValueError, match="keys must be strings"):
         plunge.plan({1: 2})
