@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include "detail.hpp"
 #include "plunge/error.hpp"
@@ -122,125 +124,164 @@ double StockGrid::maxSlope() const {
   return m;
 }
 
-RestResult restInZ(const Region& region, const DepthSolver& depths, const std::vector<Cutter>& cutters,
-                   StockGrid& grid, const RestOptions& opt) {
-  RestResult out;
-  if (cutters.empty()) return out;
-  // Every point lies within a neighbourhood (0.75 of a sample step) of a sample,
-  // and a sample only counts as cut by a plunge that cuts all of its neighbourhood
-  // (StockGrid::safeStock); what stays between samples is then the floor's slope
-  // times that distance.
-  const double margin = std::min(0.25 * opt.maxFloorStock, grid.maxSlope() * grid.neighbourhood());
-  const double target = opt.maxFloorStock - margin;
-  std::vector<size_t> over;
-  for (size_t k = 0; k < grid.size(); ++k)
-    if (grid.restTarget(k) && grid.safeStock(k) > target) over.push_back(k);
-  // Highest first, so each added plunge goes where the step is worst.
-  std::stable_sort(over.begin(), over.end(),
-                   [&](size_t a, size_t b) { return grid.safeStock(a) > grid.safeStock(b); });
-  std::vector<char> isOver(grid.size(), 0);
-  for (size_t k : over) isOver[k] = 1;
+namespace {
+
+// The rest step in Z, step by step: the samples over the limit, highest first;
+// for each still over it, unless hopeless, the candidate plunges of every tool
+// around it, ranked by a bound of how many over-limit samples each fixes; the
+// best by exact stop height (branch and bound: the same choice as trying them
+// all); cut, and the samples it fixed struck off.
+class RestStep {
+ public:
+  RestStep(const Region& region, const DepthSolver& depths, const std::vector<Cutter>& cutters, StockGrid& grid,
+           const RestOptions& opt)
+      : region_(region), depths_(depths), cutters_(cutters), grid_(grid), opt_(opt), h_(grid.neighbourhood()) {
+    // Every point lies within a neighbourhood (0.75 of a sample step) of a sample,
+    // and a sample only counts as cut by a plunge that cuts all of its neighbourhood
+    // (StockGrid::safeStock); what stays between samples is then the floor's slope
+    // times that distance.
+    const double margin = std::min(0.25 * opt.maxFloorStock, grid.maxSlope() * h_);
+    target_ = opt.maxFloorStock - margin;
+    for (int a = 0; a < 8; ++a) compass_[a] = {std::cos(a * kPi / 4), std::sin(a * kPi / 4)};
+  }
+
+  RestResult run() {
+    RestResult out;
+    for (size_t k : overLimit()) {
+      opt_.progress.tick();
+      if (!isOver_[k]) continue;
+      if (hopeless(k)) {
+        ++out.unreachable;
+        continue;
+      }
+      const std::optional<CutDisk> best = bestOf(candidatesFor(k), k);
+      if (!best) {
+        ++out.unreachable;
+        continue;
+      }
+      cut(*best);
+      out.added.push_back(*best);
+    }
+    return out;
+  }
+
+ private:
+  struct Candidate {
+    CutDisk disk;
+    int bound = 0;  // samples it may fix at most (from a lower bound of its stop height)
+    size_t order = 0;
+  };
+
+  // The samples over the limit (less the margin), highest first: each added
+  // plunge goes where the step is worst.
+  std::vector<size_t> overLimit() {
+    std::vector<size_t> over;
+    for (size_t k = 0; k < grid_.size(); ++k)
+      if (grid_.restTarget(k) && grid_.safeStock(k) > target_) over.push_back(k);
+    std::stable_sort(over.begin(), over.end(),
+                     [&](size_t a, size_t b) { return grid_.safeStock(a) > grid_.safeStock(b); });
+    isOver_.assign(grid_.size(), 0);
+    for (size_t k : over) isOver_[k] = 1;
+    return over;
+  }
 
   // A plunge fixes a sample when it cuts the sample's whole neighbourhood low enough.
-  const double h = grid.neighbourhood();
-  auto fixes = [&](const CutDisk& d, size_t k) {
-    const Cutter& c = cutters[d.tool];
-    const double rho = dist(grid.at(k), d.center) + h;
-    return rho <= c.radius && d.z + cutterProfile(c, rho) <= grid.floorAt(k) + target;
-  };
+  bool fixes(const CutDisk& d, size_t k) const {
+    const Cutter& c = cutters_[d.tool];
+    const double rho = dist(grid_.at(k), d.center) + h_;
+    return rho <= c.radius && d.z + cutterProfile(c, rho) <= grid_.floorAt(k) + target_;
+  }
+
   // A necessary condition, before the exact stop height (an optimization, up
   // to a millisecond): the plunge stops no lower than the floor at any sample
   // under it less the cutter's profile there, so a few samples under the disk
   // (its centre, 8 points at 0.9 r) bound its stop height from below. Over a
   // floor too steep for the limit (no plunger can meet it) this skips nearly
   // every stop height.
-  std::array<Vec2, 8> compass;  // unit vectors every 45 degrees, for both tests below
-  for (int a = 0; a < 8; ++a) compass[a] = {std::cos(a * kPi / 4), std::sin(a * kPi / 4)};
-  auto mayFix = [&](Vec2 c, size_t t, size_t k) {
-    const Cutter& cut = cutters[t];
+  bool mayFix(Vec2 c, size_t t, size_t k) const {
+    const Cutter& cut = cutters_[t];
     double low = -std::numeric_limits<double>::infinity();
     for (int a = -1; a < 8; ++a) {
-      const Vec2 x = a < 0 ? c : c + compass[a] * (0.9 * cut.radius);
+      const Vec2 x = a < 0 ? c : c + compass_[a] * (0.9 * cut.radius);
       size_t q;
-      if (!grid.nearest(x, q) || !grid.valid(q)) continue;
-      const double rho = dist(grid.at(q), c);
-      if (rho <= cut.radius) low = std::max(low, grid.floorAt(q) - cutterProfile(cut, rho));
+      if (!grid_.nearest(x, q) || !grid_.valid(q)) continue;
+      const double rho = dist(grid_.at(q), c);
+      if (rho <= cut.radius) low = std::max(low, grid_.floorAt(q) - cutterProfile(cut, rho));
     }
-    const double rho = dist(grid.at(k), c) + h;
-    return low + cutterProfile(cut, rho) <= grid.floorAt(k) + target + kBoundSlack;
-  };
+    const double rho = dist(grid_.at(k), c) + h_;
+    return low + cutterProfile(cut, rho) <= grid_.floorAt(k) + target_ + kBoundSlack;
+  }
+
   // Necessary for every plunge, whatever its tool and centre: the floor in the
   // sample's neighbourhood rises at most `target` above the sample. (Over the
   // neighbourhood, inside the disk, the tip stops no lower than the floor less
   // the profile there, and `fixes` adds at least that profile back.) Checked on
   // the neighbourhood's rim: a floor far too steep for the limit is given up
   // sample by sample, without trying any plunge.
-  auto hopeless = [&](size_t k) {
-    const Vec2 p = grid.at(k);
+  bool hopeless(size_t k) const {
+    const Vec2 p = grid_.at(k);
     for (int a = 0; a < 8; ++a) {
-      const double z = depths.floor().height(p + compass[a] * h);
-      if (z + opt.floorAllowance > grid.floorAt(k) + target + kBoundSlack) return true;  // false for NaN
+      const double z = depths_.floor().height(p + compass_[a] * h_);
+      if (z + opt_.floorAllowance > grid_.floorAt(k) + target_ + kBoundSlack) return true;  // false for NaN
     }
     return false;
-  };
-  for (size_t k : over) {
-    opt.progress.tick();
-    if (!isOver[k]) continue;
-    if (hopeless(k)) {
-      ++out.unreachable;
-      continue;
-    }
-    const Vec2 p = grid.at(k);
-    // Candidates, each with a lower bound of its stop height (the floor at
-    // every sample under its disk less the cutter's profile there) and so an
-    // upper bound of its score; exact stop heights (a rim optimization each,
-    // milliseconds on BREP floors) only while a candidate may still beat or tie
-    // the best (branch and bound: the same choice as trying them all).
-    struct Candidate {
-      CutDisk disk;
-      int bound = 0;
-      size_t order = 0;
-    };
+  }
+
+  // Over-limit samples a plunge fixes.
+  int score(const CutDisk& d) const {
+    const double r = cutters_[d.tool].radius;
+    int s = 0;
+    grid_.forEachIn(d.center - Vec2{r, r}, d.center + Vec2{r, r}, [&](size_t q) {
+      if (isOver_[q] && fixes(d, q)) ++s;
+    });
+    return s;
+  }
+
+  // The lowest a plunge at c can stop: the floor at every sample under it less the profile.
+  double lowestStop(Vec2 c, size_t t) const {
+    const Cutter& cut = cutters_[t];
+    double low = -std::numeric_limits<double>::infinity();
+    grid_.forEachIn(c - Vec2{cut.radius, cut.radius}, c + Vec2{cut.radius, cut.radius}, [&](size_t q) {
+      const double rho = dist(grid_.at(q), c);
+      if (rho <= cut.radius && grid_.valid(q)) low = std::max(low, grid_.floorAt(q) - cutterProfile(cut, rho));
+    });
+    return low;
+  }
+
+  // Candidates for sample k, each with a lower bound of its stop height and so
+  // an upper bound of its score, best bound first: for every tool, centres over
+  // the sample and around it (12 directions, 0.45 r and 0.9 r away), each
+  // pushed off the walls it is too close to (beside a wall the disk may reach
+  // lower floor along the wall than across it).
+  std::vector<Candidate> candidatesFor(size_t k) const {
+    const Vec2 p = grid_.at(k);
     std::vector<Candidate> candidates;
-    auto score = [&](const CutDisk& d) {
-      const double r = cutters[d.tool].radius;
-      int s = 0;
-      grid.forEachIn(d.center - Vec2{r, r}, d.center + Vec2{r, r}, [&](size_t q) {
-        if (isOver[q] && fixes(d, q)) ++s;
-      });
-      return s;
-    };
-    auto lowestStop = [&](Vec2 c, size_t t) {
-      const Cutter& cut = cutters[t];
-      double low = -std::numeric_limits<double>::infinity();
-      grid.forEachIn(c - Vec2{cut.radius, cut.radius}, c + Vec2{cut.radius, cut.radius}, [&](size_t q) {
-        const double rho = dist(grid.at(q), c);
-        if (rho <= cut.radius && grid.valid(q)) low = std::max(low, grid.floorAt(q) - cutterProfile(cut, rho));
-      });
-      return low;
-    };
-    for (size_t t = 0; t < cutters.size(); ++t) {
-      const double r = cutters[t].radius, clearance = r + opt.radialAllowance;
-      // Centres over the sample and around it (12 directions, 0.45 r and 0.9 r
-      // away), each pushed off the walls it is too close to: beside a wall the
-      // disk may reach lower floor along the wall than across it.
-      std::vector<Vec2> centres{pushOffWalls(region, p, clearance)};
+    for (size_t t = 0; t < cutters_.size(); ++t) {
+      const double r = cutters_[t].radius, clearance = r + opt_.radialAllowance;
+      std::vector<Vec2> centres{pushOffWalls(region_, p, clearance)};
       for (double f : {0.45, 0.9})
         for (int a = 0; a < 12; ++a)
           centres.push_back(
-              pushOffWalls(region, p + Vec2{std::cos(a * kPi / 6), std::sin(a * kPi / 6)} * (f * r), clearance));
+              pushOffWalls(region_, p + Vec2{std::cos(a * kPi / 6), std::sin(a * kPi / 6)} * (f * r), clearance));
       for (const Vec2& c : centres) {
         // Only a disk over the sample's whole neighbourhood can fix it (`fixes`):
         // others are not worth a stop height.
-        if (dist(c, p) + h > r || !region.diskFits(c, clearance)) continue;
+        if (dist(c, p) + h_ > r || !region_.diskFits(c, clearance)) continue;
         if (!mayFix(c, t, k)) continue;
         CutDisk low{c, static_cast<int>(t), lowestStop(c, t) - kBoundSlack};
-        if (low.z >= opt.topZ || !fixes(low, k)) continue;
+        if (low.z >= opt_.topZ || !fixes(low, k)) continue;
         candidates.push_back({low, score(low), candidates.size()});
       }
     }
     std::stable_sort(candidates.begin(), candidates.end(),
                      [](const Candidate& a, const Candidate& b) { return a.bound > b.bound; });
+    return candidates;
+  }
+
+  // The candidate that fixes the most at its exact stop height (a rim
+  // optimization each, milliseconds on BREP floors), computed only while a
+  // candidate may still beat or tie the best; none if none fixes sample k.
+  std::optional<CutDisk> bestOf(const std::vector<Candidate>& candidates, size_t k) const {
     CutDisk best;
     int bestScore = 0;
     size_t bestOrder = 0;
@@ -249,11 +290,11 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
       if (bestScore > 0 && cand.bound == bestScore && cand.order > bestOrder) continue;
       CutDisk d = cand.disk;
       try {
-        d.z = depths.plungeHeight(d.center, cutters[d.tool], opt.floorAllowance, opt.radialAllowance);
+        d.z = depths_.plungeHeight(d.center, cutters_[d.tool], opt_.floorAllowance, opt_.radialAllowance);
       } catch (const Error&) {
         continue;  // no floor under part of the disk
       }
-      if (d.z >= opt.topZ || !fixes(d, k)) continue;
+      if (d.z >= opt_.topZ || !fixes(d, k)) continue;
       const int s = score(d);
       // Ties: the larger tool (it was listed first), then the first centre.
       if (s > bestScore || (s == bestScore && s > 0 && cand.order < bestOrder)) {
@@ -262,18 +303,36 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
         bestOrder = cand.order;
       }
     }
-    if (bestScore == 0) {
-      ++out.unreachable;
-      continue;
-    }
-    grid.cut(best, cutters[best.tool]);
-    const double r = cutters[best.tool].radius;
-    grid.forEachIn(best.center - Vec2{r, r}, best.center + Vec2{r, r}, [&](size_t q) {
-      if (isOver[q] && grid.safeStock(q) <= target) isOver[q] = 0;
-    });
-    out.added.push_back(best);
+    if (bestScore == 0) return std::nullopt;
+    return best;
   }
-  return out;
+
+  // Cuts the plunge into the grid and strikes off the samples it brought under the limit.
+  void cut(const CutDisk& d) {
+    grid_.cut(d, cutters_[d.tool]);
+    const double r = cutters_[d.tool].radius;
+    grid_.forEachIn(d.center - Vec2{r, r}, d.center + Vec2{r, r}, [&](size_t q) {
+      if (isOver_[q] && grid_.safeStock(q) <= target_) isOver_[q] = 0;
+    });
+  }
+
+  const Region& region_;
+  const DepthSolver& depths_;
+  const std::vector<Cutter>& cutters_;
+  StockGrid& grid_;
+  const RestOptions& opt_;
+  const double h_;
+  double target_ = 0.0;
+  std::array<Vec2, 8> compass_;  // unit vectors every 45 degrees
+  std::vector<char> isOver_;
+};
+
+}  // namespace
+
+RestResult restInZ(const Region& region, const DepthSolver& depths, const std::vector<Cutter>& cutters,
+                   StockGrid& grid, const RestOptions& opt) {
+  if (cutters.empty()) return {};
+  return RestStep(region, depths, cutters, grid, opt).run();
 }
 
 StockReport measureStock(const StockGrid& grid, double topZ) {
