@@ -157,6 +157,7 @@ void sequence(const PlanInput& in, const std::vector<CutDisk>& disks, Plan& out)
     for (int i : tour(pts, false, at, to)) {
       const Vec2 p = pts[i];
       out.plunges.push_back(plungeOf(in.tools[t], p, mine[i]->z));
+      out.plunges.back().rest = mine[i]->rest;
       at = p;
     }
   }
@@ -190,7 +191,6 @@ void restStep(const PlanInput& in, const Region& region, const FloorSurface& flo
   ro.progress = progress;
   const RestResult rest = restInZ(region, depths, cutters, grid, ro);
   disks.insert(disks.end(), rest.added.begin(), rest.added.end());
-  out.stats.restPlunges = static_cast<int>(rest.added.size());
 }
 
 // The stock the plan's plunges leave on the floor, and the volumes.
@@ -267,6 +267,8 @@ void countPlunges(const PlanInput& in, Plan& out) {
   out.stats.startHoles = static_cast<int>(
       std::count_if(out.plunges.begin(), out.plunges.end(), [](const Plunge& p) { return p.startHole; }));
   out.stats.plungeCount = static_cast<int>(out.plunges.size());
+  out.stats.restPlunges = static_cast<int>(
+      std::count_if(out.plunges.begin(), out.plunges.end(), [](const Plunge& p) { return p.rest && p.level == 0; }));
 }
 
 // Coverage, the core beyond the wall band and the wall stock, from what the

@@ -161,6 +161,7 @@ class RestStep {
       }
       cut(*best);
       out.added.push_back(*best);
+      out.added.back().rest = true;
     }
     return out;
   }

@@ -92,12 +92,10 @@ def stock_at(data, plan, X, Y):
 
 
 @pytest.fixture(scope="module", params=list(CASES))
-def planned(request, build_dir):
-    import sys
-    sys.path.insert(0, os.path.join(build_dir, "cpp"))
-    import plunge
+def planned(request, plunge):
     data = CASES[request.param]()
     return data, plunge.plan(data)
+
 
 
 def test_counts_are_the_plunges(planned):
@@ -109,6 +107,8 @@ def test_counts_are_the_plunges(planned):
     assert s["start_holes"] == sum(bool(p.get("start_hole")) for p in plunges)
     assert s["lead_outs"] == sum("lead_out" in p for p in plunges)
     assert s["levels"] == 1 + max(p.get("level", 0) for p in plunges)
+    assert s["lead_outs"] + s["no_lead_out_material"] + s["no_lead_out_walls"] == len(plunges)
+    assert s["boundary_tolerance"] == 0.0  # boundaries of a few hundred vertices plan as given
     travel = sum(np.hypot(b["x"] - (a["lead_out"][0] if "lead_out" in a else a["x"]),
                           b["y"] - (a["lead_out"][1] if "lead_out" in a else a["y"]))
                  for a, b in zip(plunges, plunges[1:]))
@@ -119,7 +119,11 @@ def test_coverage_is_what_the_plunges_cut(planned):
     data, plan = planned
     s = plan["stats"]
     _, _, accessible, disks = accessible_and_disks(data, plan)
+    pocket, radial, _, _ = accessible_and_disks(data, plan)
+    assert s["region_area"] == pytest.approx(pocket.buffer(-radial, resolution=64).area, rel=2e-3)
     assert s["accessible_area"] == pytest.approx(accessible.area, rel=2e-3)
+    r_max = max(t["diameter"] for t in data["tools"]) / 2
+    assert s["hex_reference_count"] == pytest.approx(accessible.area / (1.5 * math.sqrt(3) * r_max ** 2), rel=2e-3)
     assert s["covered_area"] == pytest.approx(accessible.intersection(disks).area, rel=2e-3)
     assert s["coverage"] == pytest.approx(accessible.intersection(disks).area / accessible.area, abs=1e-3)
 
@@ -171,3 +175,50 @@ def test_the_mean_floor_stock_between_the_samples(planned):
     floor, cut, _, core = stock_at(data, plan, Xf, Yf)
     stock = (cut - floor)[core & np.isfinite(cut)]
     assert plan["stats"]["mean_floor_stock"] == pytest.approx(stock.mean(), abs=0.01)
+
+
+def test_rest_plunges_are_the_plunges_the_floor_stock_added(planned, plunge):
+    """Without engagement limits the rest step only adds: the plan without it
+    has the same plunges less the rest plunges (one per position with levels).
+    With limits every tool grows its own plunges and none is the rest step's."""
+    data, plan = planned
+    s = plan["stats"]
+    first = [p for p in plan["plunges"] if p.get("level", 0) == 0]
+    if any("max_engagement" in t for t in data["tools"]):
+        if all("max_engagement" in t for t in data["tools"]):
+            assert s["rest_plunges"] == 0
+        return
+    plain = plunge.plan(dict(data, max_floor_stock=0))
+    assert plain["stats"]["rest_plunges"] == 0
+    assert len(first) == sum(p.get("level", 0) == 0 for p in plain["plunges"]) + s["rest_plunges"]
+
+
+def test_times_are_the_plans_moves(planned):
+    """The time model (docs/plan-format.md) recomputed from the plunges' own
+    heights, lead-outs and feeds: rapids across and down, feeds down and out,
+    retracts, a tool change per tool."""
+    data, plan = planned
+    s, plunges = plan["stats"], plan["plunges"]
+    feed = {t["id"]: t.get("feed", 200.0) for t in data["tools"]}
+    rapid, retract, change = 10000.0, 5000.0, 20.0  # the time model's defaults
+    safe = data.get("safe_z", 5.0)
+
+    def minutes(at_safe):
+        total, z = 0.0, safe
+        for i, p in enumerate(plunges):
+            if i > 0:
+                q = plunges[i - 1]
+                a = q.get("lead_out", (q["x"], q["y"]))
+                total += math.hypot(p["x"] - a[0], p["y"] - a[1]) / rapid
+            approach = safe if at_safe else p["approach_z"]
+            up = safe if at_safe else p["retract_z"]
+            total += max(0.0, z - approach) / retract + (approach - p["z"]) / feed[p["tool_id"]]
+            if "lead_out" in p:
+                total += math.hypot(p["lead_out"][0] - p["x"], p["lead_out"][1] - p["y"]) / feed[p["tool_id"]]
+            total += (up - p["z"]) / retract
+            z = up
+        changes = sum(1 for i, p in enumerate(plunges) if i == 0 or plunges[i - 1]["tool_id"] != p["tool_id"])
+        return total + changes * change / 60.0
+
+    assert s["estimated_minutes"] == pytest.approx(minutes(False), rel=1e-9)
+    assert s["minutes_at_safe_height"] == pytest.approx(minutes(True), rel=1e-9)

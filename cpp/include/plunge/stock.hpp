@@ -27,6 +27,7 @@ struct CutDisk {
   Vec2 center;
   int tool = 0;  // index into the cutters
   double z = 0.0;
+  bool rest = false;  // added by the rest step in Z (restInZ)
 };
 
 // Samples of the pocket every `spacing` mm (row-major from `origin`): the

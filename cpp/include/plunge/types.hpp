@@ -154,6 +154,7 @@ struct Plunge {
   bool start = false;       // into solid (centre-cutting) or a start hole: no engagement limit
   double engagement = 0.0;  // radial engagement met, mm (engagement.hpp)
   int level = 0;            // 0 for the first level (flute length, motion.hpp)
+  bool rest = false;        // added by the rest step in Z (stats.rest_plunges; not in the JSON)
 };
 
 struct ToolCount {
@@ -184,7 +185,7 @@ struct PlanStats {
   double meanFloorStock = 0.0;
   double volumeRemoved = 0.0;  // mm^3
   double volumeLeft = 0.0;     // mm^3: the pocket down to floor + allowance, minus what is removed
-  int restPlunges = 0;         // plunges added by the rest step in Z
+  int restPlunges = 0;         // plunges of the plan the rest step in Z added (a limited tool's growth replaces them)
   // Real plunge mills (engagement.hpp, motion.hpp).
   int startHoles = 0;           // start holes drilled for non-centre-cutting plungers
   int overEngaged = 0;          // plunges (not starts) cutting wider than their tool's max_engagement
