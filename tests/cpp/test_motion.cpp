@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <memory>
+
+#include "plunge/depth.hpp"
+#include "plunge/floor.hpp"
 #include "plunge/heightfield.hpp"
 #include "plunge/motion.hpp"
 #include "plunge/plan.hpp"
@@ -80,4 +84,34 @@ TEST(Motion, ShortFlutesCutInLevels) {
     if (q.leadOut) f.cut(*q.leadOut, c, q.z);
   }
   EXPECT_TRUE(p.warnings.empty() || p.warnings.front().find("flute") == std::string::npos);
+}
+
+// Motion on its own: two plunges of a row, made by hand, with nothing but the
+// machine's options (no plan input). The second cuts a crescent beside the
+// first: it rapids down to just above the stock, leads out back into the first
+// hole, and the first retracts no higher than the move over the stock needs.
+TEST(Motion, OnItsOwnOptions) {
+  const Region region({{0, 0}, {100, 0}, {100, 60}, {0, 60}}, {});
+  const std::unique_ptr<FloorSurface> floor = makeFlatFloor(-20);
+  const DepthSolver depths(*floor, region.minCorner(), region.maxCorner(), 2.0);
+  MotionOptions o;
+  o.tools = ToolTable({{20, 1, 150}});
+  o.topZ = 0;
+  o.safeZ = 10;
+  o.leadOut = 1.0;
+  Plan plan;
+  plan.plunges = {plungeOf(o.tools.byId(1), {30, 30}, -20), plungeOf(o.tools.byId(1), {38, 30}, -20)};
+  planMotion(region, depths, plan, o);
+  const Plunge &a = plan.plunges[0], &b = plan.plunges[1];
+  EXPECT_DOUBLE_EQ(a.approachZ, o.topZ + o.rapidClearance);  // uncut stock under the first
+  EXPECT_DOUBLE_EQ(a.retractZ, o.topZ + o.rapidClearance);   // the stock along the move is top_z
+  EXPECT_DOUBLE_EQ(b.approachZ, o.topZ + o.rapidClearance);  // part of its disk is still uncut
+  ASSERT_TRUE(b.leadOut.has_value());
+  EXPECT_NEAR(dist(*b.leadOut, {38, 30}), 1.0, 1e-9);
+  EXPECT_LT(b.leadOut->x, 38.0);  // toward the first hole, the only cut space
+  EXPECT_DOUBLE_EQ(b.retractZ, o.safeZ);  // the last plunge of its tool
+  EXPECT_NEAR(b.engagement, 8.0, 2 * stockOf(o.tools.all(), o.topZ, region).spacing());
+  EXPECT_EQ(plan.stats.leadOuts + plan.stats.noLeadOutMaterial + plan.stats.noLeadOutWalls, 2);
+  EXPECT_NEAR(plan.stats.travelLength, dist(a.leadOut ? *a.leadOut : Vec2{30, 30}, {38, 30}), 1e-9);
+  EXPECT_EQ(plan.stats.estimatedMinutes, motionMinutes(plan, o, false));
 }
