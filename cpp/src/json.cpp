@@ -244,24 +244,24 @@ void readScalars(const json& j, PlanInput& in) {
 
 }  // namespace
 
-std::vector<Tool> toolsFromJson(const std::string& text) {
-  json j;
+namespace {
+
+// The text as JSON; syntax errors and numbers out of range are bad input.
+json parsed(const std::string& text, const std::string& what) {
   try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw Error(std::string("tools: invalid JSON: ") + e.what());
+    return json::parse(text);
+  } catch (const json::exception& e) {
+    std::string msg = e.what();
+    throw Error(what + "invalid JSON: " + msg.substr(msg.find(']') == std::string::npos ? 0 : msg.find(']') + 2));
   }
-  return toolList(j, "tools");
 }
 
+}  // namespace
+
+std::vector<Tool> toolsFromJson(const std::string& text) { return toolList(parsed(text, "tools: "), "tools"); }
+
 PlanInput planInputFromJson(const std::string& text) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {  // syntax errors, numbers out of range
-    std::string msg = e.what();
-    throw Error("invalid JSON: " + msg.substr(msg.find(']') == std::string::npos ? 0 : msg.find(']') + 2));
-  }
+  const json j = parsed(text, "");
   if (!j.is_object()) throw Error("input: expected a JSON object");
   onlyKeys(j,
            {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",

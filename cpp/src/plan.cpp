@@ -40,7 +40,6 @@ std::unique_ptr<FloorSurface> makeFloor(const PlanInput& in) {
   return makeBrepFloor(resolveInputPath(in, in.floor.brep));
 }
 
-
 // A floor or a plunger that is not flat: plunges stop at different heights.
 bool isSculptured(const PlanInput& in, const FloorSurface& floor) {
   return !floor.isFlat() || std::any_of(in.tools.begin(), in.tools.end(),
@@ -240,14 +239,10 @@ void floorStock(const PlanInput& in, const Region& region, const FloorSurface& f
 
 // What the final plunges cut, as a covering's result: the stats describe the
 // plan as made (rest plunges, growth within the limits and levels included).
-CoverResult coverOf(const PlanInput& in, const Plan& out, const Polygons& core) {
+CoverResult coverOf(const Plan& out, const Polygons& core) {
   CoverResult c;
-  const ToolTable tools(in.tools);
   std::vector<Circle> circles;
-  for (const Plunge& p : out.plunges) {
-    circles.push_back({{p.x, p.y}, 0.5 * p.diameter});
-    c.disks.push_back({{p.x, p.y}, 0.5 * p.diameter, static_cast<int>(tools.indexOf(p.toolId))});
-  }
+  for (const Plunge& p : out.plunges) circles.push_back({{p.x, p.y}, 0.5 * p.diameter});
   c.accessibleArea = poly::area(out.accessible);
   c.uncovered = uncoveredRegion(out.accessible, circles);
   c.coveredArea = c.accessibleArea - poly::area(c.uncovered);
@@ -443,7 +438,7 @@ Plan planWithTools(PlanInput in, const Progress& progress) {
   const MotionOptions motion = motionOptions(in);
   out.plunges = splitIntoLevels(out.plunges, motion, out.stats);
   // Measured on the final plunges (the rest step and the limits add to the covering's).
-  coverageStats(in, pocket.region, coverOf(in, out, pocket.core), out);
+  coverageStats(in, pocket.region, coverOf(out, pocket.core), out);
   planMotion(pocket.region, depths, out, motion);
   floorStock(in, pocket.region, *floor, out, held, progress);
   countPlunges(in, out);
