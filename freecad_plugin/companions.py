@@ -161,8 +161,8 @@ def syncCompanions(obj):
 def activate_companions(obj, plan, tcs):
     """The tool controller the operation itself cuts with; the companions that
     have plunges to make active, the others idle (so the post writes no tool
-    change without plunges after it). None after reporting a plan that drills
-    start holes no companion makes (and the problem to report)."""
+    change without plunges after it); with None for the problem. (None, the
+    problem) for a plan that drills start holes no companion makes."""
     used = {p["tool_id"] for p in plan["plunges"]}
     own_tc = tcs[0]
     # Automatic choice: this operation cuts with the largest plunger the plan uses.
