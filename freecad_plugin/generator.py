@@ -10,11 +10,11 @@ def generate(plunges, clearance_height, safe_height, canned_cycle=False, peck_de
     """Commands for one tool's plunges, in order.
 
     plunges: sequence of (x, y, z) stop points, or of the plan's plunge dicts
-    (x, y, z, and approach_z, retract_z, lead_out from the planner's stock
-    simulation). The tool starts and ends at the clearance height. With explicit
+    (x, y, z, and approach_z, retract_z, lead_out, lead_out_z from the
+    planner's stock simulation). The tool starts and ends at the clearance height. With explicit
     moves it rapids to each plunge at the previous retract height, rapids down
-    to the approach height (the safe height for tuples), feeds to z, feeds along
-    the lead-out and rapids up to the retract height (the feed rates are the
+    to the approach height (the safe height for tuples), feeds to z, feeds up
+    to lead_out_z if given, feeds along the lead-out and rapids up to the retract height (the feed rates are the
     tool controller's, set afterwards by PathFeedRate). With canned_cycle, each plunge is a G81 (or G83
     pecking by peck_depth) with the retract plane at the safe height, inside
     G98/G99 ... G80; the rapid to X Y comes first, so that the cycle itself is a
@@ -59,6 +59,8 @@ def generate(plunges, clearance_height, safe_height, canned_cycle=False, peck_de
             if m["approach_z"] < at:
                 cmds.append(Path.Command("G0", {"Z": m["approach_z"]}))
             cmds.append(Path.Command("G1", {"Z": m["z"]}))
+            if m["lead_out_z"] is not None:
+                cmds.append(Path.Command("G1", {"Z": m["lead_out_z"]}))
             if m["lead_out"] is not None:
                 cmds.append(Path.Command("G1", {"X": m["lead_out"][0], "Y": m["lead_out"][1]}))
             # The last plunge of the operation leaves at the safe height.
@@ -75,6 +77,8 @@ def _move(p, safe_height):
         return {"x": p["x"], "y": p["y"], "z": p["z"],
                 "approach_z": min(p.get("approach_z", safe_height), safe_height),
                 "retract_z": min(p.get("retract_z", safe_height), safe_height),
-                "lead_out": tuple(lead) if lead is not None else None}
+                "lead_out": tuple(lead) if lead is not None else None,
+                "lead_out_z": p.get("lead_out_z") if lead is not None else None}
     x, y, z = p
-    return {"x": x, "y": y, "z": z, "approach_z": safe_height, "retract_z": safe_height, "lead_out": None}
+    return {"x": x, "y": y, "z": z, "approach_z": safe_height, "retract_z": safe_height, "lead_out": None,
+            "lead_out_z": None}

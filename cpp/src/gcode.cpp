@@ -28,10 +28,12 @@ std::string planToGcode(const PlanInput& input, const Plan& plan) {
     }
     if (p.startHole) s << "(start hole)\n";
     // Rapid over at the last retract height, down to the approach height, feed
-    // through the material, lead out, rapid up only as high as the next move needs.
+    // through the material, lead out (fed up to its height first if raised),
+    // rapid up only as high as the next move needs.
     s << "G0 X" << p.x << " Y" << p.y << "\n";
     s << "G0 Z" << p.approachZ << "\n";
     s << "G1 Z" << p.z << " F" << feed[p.toolId] << "\n";
+    if (p.leadOutZ) s << "G1 Z" << *p.leadOutZ << "\n";
     if (p.leadOut) s << "G1 X" << p.leadOut->x << " Y" << p.leadOut->y << "\n";
     s << "G0 Z" << p.retractZ << "\n";
   }

@@ -315,6 +315,7 @@ std::string planToJson(const Plan& plan) {
               {"start", p.start},
               {"start_hole", p.startHole}};
     if (p.leadOut) o["lead_out"] = {p.leadOut->x, p.leadOut->y};
+    if (p.leadOutZ) o["lead_out_z"] = *p.leadOutZ;
     out["plunges"].push_back(o);
   }
   const PlanStats& s = plan.stats;
@@ -342,6 +343,7 @@ std::string planToJson(const Plan& plan) {
                   {"over_engaged", s.overEngaged},
                   {"thin_cuts", s.thinCuts},
                   {"lead_outs", s.leadOuts},
+                  {"raised_lead_outs", s.raisedLeadOuts},
                   {"no_lead_out_material", s.noLeadOutMaterial},
                   {"no_lead_out_walls", s.noLeadOutWalls},
                   {"levels", s.levels},

@@ -23,6 +23,10 @@ constexpr size_t kHolesTried = 8;
 // A raster cell's centre to its corner, in cells (sqrt(2) / 2, rounded up): how
 // far a material cell's centre may lie from the material it stands for.
 constexpr double kCellHalfDiagonal = 0.71;
+// A raised lead-out: its height is searched on the first few directions that
+// clear at the highest it may be, to this precision (mm); the lowest wins.
+constexpr int kRaisedTried = 4;
+constexpr double kRaisedPrecision = 0.002;
 
 // Runs of consecutive plunges with the same tool and role.
 template <class F>
@@ -240,7 +244,8 @@ enum class NoLeadOut { None, Material, Walls };
 // ones run on few directions.
 std::optional<Vec2> leadOutOf(const MotionOptions& in, const Region& region, const DepthSolver& depths,
                               const HeightField& stock, const Touched& touched, const Plunge& p,
-                              const Cutter& cutter, std::optional<Plunge> back, NoLeadOut& why) {
+                              const Cutter& cutter, std::optional<Plunge> back, NoLeadOut& why,
+                              std::optional<double>& raisedTo) {
   const Vec2 c{p.x, p.y};
   struct End {
     Vec2 at;
@@ -317,6 +322,46 @@ std::optional<Vec2> leadOutOf(const MotionOptions& in, const Region& region, con
       return ends[k].at;
   bool room = false;
   for (size_t k = 0; k < ends.size() && !room; ++k) room = fits[k] == 1 || wallsKept(ends[k].at);
+  if (room) {
+    // Raised: a plunge that went deeper than the plunges around it (a hollow
+    // of a sculptured floor, uneven depths) sits in a ring of their steps.
+    // It feeds up the ring's height, if that is no more than the lead-out is
+    // long (the edges drag along at most that much of the wall just cut),
+    // then out, grazing no more than half the lead-out at that height and
+    // clear of the floor. The directions with the most room first.
+    const double highest = p.z + L;
+    auto grazes = [&](Vec2 end, double z) {
+      return stock.bite(c, end, cutter, z) > 0.5 * L ||
+             touched.bite(c, end, r, z + cutterProfile(cutter, r)) > 0.5 * L;
+    };
+    // The height each of the first few clear directions needs to graze no
+    // more (bisection), then the floor under the way out, lowest first.
+    std::vector<std::pair<double, Vec2>> heights;
+    for (size_t k = 0; k < ends.size() && heights.size() < kRaisedTried; ++k) {
+      const Vec2 end = ends[k].at;
+      if (grazes(end, highest) || !wallsKept(end)) continue;
+      double lo = p.z, hi = highest;  // grazes at lo (the tests above), not at hi
+      while (hi - lo > kRaisedPrecision) {
+        const double mid = 0.5 * (lo + hi);
+        (grazes(end, mid) ? lo : hi) = mid;
+      }
+      heights.push_back({hi, end});
+    }
+    std::stable_sort(heights.begin(), heights.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    const int fine = samples;
+    std::optional<std::pair<double, Vec2>> best;
+    for (auto [z, end] : heights) {
+      if (best && z >= best->first) break;
+      for (int s = 1; s <= fine && z <= highest; ++s)
+        z = std::max(z, depths.plungeHeight(c + (end - c) * (static_cast<double>(s) / fine), cutter,
+                                            in.floorAllowance, in.radialAllowance));
+      if (z <= highest && (!best || z < best->first)) best = {{z, end}};
+    }
+    if (best) {
+      if (best->first > p.z + 1e-6) raisedTo = best->first;
+      return best->second;
+    }
+  }
   if (!room) {
     why = NoLeadOut::Walls;
     return std::nullopt;
@@ -335,7 +380,7 @@ void planMotion(const Region& region, const DepthSolver& depths, Plan& plan, con
   const double tol = 1.5 * stock.spacing();
   int tooDeep = 0, coreOnMaterial = 0;
   plan.stats.overEngaged = plan.stats.thinCuts = 0;
-  plan.stats.leadOuts = plan.stats.noLeadOutMaterial = plan.stats.noLeadOutWalls = 0;
+  plan.stats.leadOuts = plan.stats.raisedLeadOuts = plan.stats.noLeadOutMaterial = plan.stats.noLeadOutWalls = 0;
   plan.stats.travelLength = 0.0;
   for (size_t i = 0; i < ps.size(); ++i) {
     Plunge& p = ps[i];
@@ -366,17 +411,19 @@ void planMotion(const Region& region, const DepthSolver& depths, Plan& plan, con
     stock.cut(c, cutter, p.z);
     touched.add(c, r, p.z + cornerHeight(t));
     p.leadOut.reset();
+    p.leadOutZ.reset();
     if (in.leadOut > 0.0) {
       // Back toward the plunge before, where the same tool just cut.
       std::optional<Plunge> back;
       if (i > 0 && ps[i - 1].toolId == p.toolId) back = ps[i - 1];
       NoLeadOut why = NoLeadOut::None;
-      p.leadOut = leadOutOf(in, region, depths, stock, touched, p, cutter, back, why);
+      p.leadOut = leadOutOf(in, region, depths, stock, touched, p, cutter, back, why, p.leadOutZ);
       if (why == NoLeadOut::Material) ++plan.stats.noLeadOutMaterial;
       if (why == NoLeadOut::Walls) ++plan.stats.noLeadOutWalls;
       if (p.leadOut) ++plan.stats.leadOuts;
+      if (p.leadOutZ) ++plan.stats.raisedLeadOuts;
     }
-    if (p.leadOut) touched.add(*p.leadOut, r, p.z + cornerHeight(t));
+    if (p.leadOut) touched.add(*p.leadOut, r, p.leadOutZ.value_or(p.z) + cornerHeight(t));
     p.retractZ = in.safeZ;
   }
   // What the limits could not keep, each said once with its count.
@@ -410,7 +457,7 @@ double motionMinutes(const Plan& plan, const MotionOptions& in, bool atSafeHeigh
     const double approach = atSafeHeight ? in.safeZ : p.approachZ;
     const double retract = atSafeHeight ? in.safeZ : p.retractZ;
     minutes += std::max(0.0, z - approach) / m.retractRate + (approach - p.z) / feed;
-    if (p.leadOut) minutes += dist(*p.leadOut, {p.x, p.y}) / feed;
+    if (p.leadOut) minutes += (dist(*p.leadOut, {p.x, p.y}) + p.leadOutZ.value_or(p.z) - p.z) / feed;
     minutes += (retract - p.z) / m.retractRate;
     z = retract;
   }

@@ -4,6 +4,7 @@
 
 #include "plunge/depth.hpp"
 #include "plunge/floor.hpp"
+#include "plunge/gcode.hpp"
 #include "plunge/heightfield.hpp"
 #include "plunge/motion.hpp"
 #include "plunge/plan.hpp"
@@ -114,4 +115,46 @@ TEST(Motion, OnItsOwnOptions) {
   EXPECT_EQ(plan.stats.leadOuts + plan.stats.noLeadOutMaterial + plan.stats.noLeadOutWalls, 2);
   EXPECT_NEAR(plan.stats.travelLength, dist(a.leadOut ? *a.leadOut : Vec2{30, 30}, {38, 30}), 1e-9);
   EXPECT_EQ(plan.stats.estimatedMinutes, motionMinutes(plan, o, false));
+}
+
+// A plunge deeper than the six around it sits in a ring of their steps: its
+// lead-out feeds up to the steps' height first, if they are no higher than the
+// lead-out is long; the G-code and the time model follow.
+TEST(Motion, ALeadOutRisesOutOfTheStepsAround) {
+  const Region region({{0, 0}, {100, 0}, {100, 60}, {0, 60}}, {});
+  const std::unique_ptr<FloorSurface> floor = makeFlatFloor(-20);
+  const DepthSolver depths(*floor, region.minCorner(), region.maxCorner(), 2.0);
+  MotionOptions o;
+  o.tools = ToolTable({{20, 1, 150}});
+  o.topZ = 0;
+  o.safeZ = 10;
+  o.leadOut = 1.0;
+  for (double step : {0.8, 1.5}) {
+    Plan plan;
+    for (int k = 0; k < 6; ++k)
+      plan.plunges.push_back(
+          plungeOf(o.tools.byId(1), Vec2{50, 30} + Vec2{std::cos(k * kPi / 3), std::sin(k * kPi / 3)} * 9.0, -20 + step));
+    plan.plunges.push_back(plungeOf(o.tools.byId(1), {50, 30}, -20));
+    planMotion(region, depths, plan, o);
+    const Plunge& deep = plan.plunges.back();
+    if (step <= o.leadOut) {
+      ASSERT_TRUE(deep.leadOut && deep.leadOutZ);
+      EXPECT_NEAR(dist(*deep.leadOut, {50, 30}), o.leadOut, 1e-9);
+      EXPECT_GE(*deep.leadOutZ, -20 + step - 1e-9);  // clear of the steps
+      EXPECT_LE(*deep.leadOutZ, -20 + step + 0.01);  // and no higher than they need
+      EXPECT_EQ(plan.stats.raisedLeadOuts, 1);
+      PlanInput in;
+      in.tools = o.tools.all();
+      const std::string g = planToGcode(in, plan), feedDown = "G1 Z-20.0000 F150.0000\nG1 Z";
+      const size_t at = g.rfind(feedDown);  // the deep plunge feeds up, then out
+      ASSERT_NE(at, std::string::npos) << g;
+      EXPECT_NEAR(std::stod(g.substr(at + feedDown.size())), *deep.leadOutZ, 1e-3);
+      EXPECT_EQ(g.substr(g.find('\n', at + feedDown.size()) + 1, 4), "G1 X");
+    } else {
+      EXPECT_FALSE(deep.leadOut);  // the steps are higher than the lead-out is long
+      EXPECT_EQ(plan.stats.raisedLeadOuts, 0);
+      EXPECT_GE(plan.stats.noLeadOutMaterial, 1);
+    }
+    EXPECT_EQ(plan.stats.estimatedMinutes, motionMinutes(plan, o, false));
+  }
 }

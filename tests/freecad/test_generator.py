@@ -29,6 +29,15 @@ def test_explicit_moves():
             assert before >= 5  # rapids across only at or above the safe height
 
 
+def test_plan_moves_with_lead_outs():
+    """The plan's own heights and lead-outs: a raised lead-out feeds up first, then out."""
+    plunges = [{"x": 1, "y": 2, "z": -5, "approach_z": 1, "retract_z": 2, "lead_out": [1.5, 2]},
+               {"x": 3, "y": 4, "z": -6, "approach_z": 1, "retract_z": 2, "lead_out": [3, 4.5], "lead_out_z": -5.6}]
+    cmds = generator.generate(plunges, clearance_height=10, safe_height=5)
+    feeds = [(c.Parameters.get("X"), c.Parameters.get("Y"), z) for c, _, z in heights(cmds) if c.Name == "G1"]
+    assert feeds == [(None, None, -5), (1.5, 2, -5), (None, None, -6), (None, None, -5.6), (3, 4.5, -5.6)]
+
+
 @pytest.mark.parametrize("peck,cycle", [(0.0, "G81"), (2.0, "G83")])
 def test_canned_cycles(peck, cycle):
     cmds = generator.generate([(1, 2, -5), (3, 4, -6)], 10, 5, canned_cycle=True, peck_depth=peck)

@@ -108,6 +108,25 @@ def test_sculptured_example_with_a_plunge_cutter(cli, tmp_path):
     assert plan["stats"]["start_holes"] >= 1
 
 
+@pytest.mark.parametrize("kind", ["half", "quarter"])
+def test_sculptured_limited_plans_lead_out_raised_out_of_the_steps(cli, tmp_path, kind):
+    """Over a sculptured floor plunges stop at different heights: one deeper than
+    those around sits in a ring of their steps. It feeds up out of them (no
+    more than the lead-out is long) and then leads out, so nearly every plunge
+    does; the checker replays each raised lead-out at its height."""
+    data = mill(json.load(open(os.path.join(EXAMPLES, "sculptured.json"))), kind)
+    plan, gcode = post(cli, data, tmp_path)
+    stats, plunges = plan["stats"], plan["plunges"]
+    raised = [p for p in plunges if "lead_out_z" in p]
+    assert stats["raised_lead_outs"] == len(raised) > 0
+    assert all(0 < p["lead_out_z"] - p["z"] <= data.get("lead_out", 0.5) for p in raised)
+    assert stats["lead_outs"] >= 0.9 * len(plunges), (stats["lead_outs"], len(plunges))
+    report = check_program(data, data["tools"], gcode)
+    assert report["lead_outs"] == stats["lead_outs"]
+    for key in ("gouges", "rapid_through_stock", "lead_out_into_material", "too_deep"):
+        assert not report[key], (key, report[key][:3])
+
+
 def test_lead_out_zero_retracts_straight_up(cli, tmp_path):
     data = json.load(open(os.path.join(EXAMPLES, "pocket.json")))
     plan, gcode = post(cli, dict(data, lead_out=0), tmp_path)

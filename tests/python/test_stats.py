@@ -106,6 +106,9 @@ def test_counts_are_the_plunges(planned):
     assert per_tool == {i: sum(p["tool_id"] == i for p in plunges) for i in {p["tool_id"] for p in plunges}}
     assert s["start_holes"] == sum(bool(p.get("start_hole")) for p in plunges)
     assert s["lead_outs"] == sum("lead_out" in p for p in plunges)
+    assert s["raised_lead_outs"] == sum("lead_out_z" in p for p in plunges)
+    assert all("lead_out" in p and 0 < p["lead_out_z"] - p["z"] <= data.get("lead_out", 0.5) + 1e-9
+               for p in plunges if "lead_out_z" in p)
     assert s["levels"] == 1 + max(p.get("level", 0) for p in plunges)
     assert s["lead_outs"] + s["no_lead_out_material"] + s["no_lead_out_walls"] == len(plunges)
     assert s["boundary_tolerance"] == 0.0  # boundaries of a few hundred vertices plan as given
@@ -214,7 +217,8 @@ def test_times_are_the_plans_moves(planned):
             up = safe if at_safe else p["retract_z"]
             total += max(0.0, z - approach) / retract + (approach - p["z"]) / feed[p["tool_id"]]
             if "lead_out" in p:
-                total += math.hypot(p["lead_out"][0] - p["x"], p["lead_out"][1] - p["y"]) / feed[p["tool_id"]]
+                rise = p.get("lead_out_z", p["z"]) - p["z"]
+                total += (rise + math.hypot(p["lead_out"][0] - p["x"], p["lead_out"][1] - p["y"])) / feed[p["tool_id"]]
             total += (up - p["z"]) / retract
             z = up
         changes = sum(1 for i, p in enumerate(plunges) if i == 0 or plunges[i - 1]["tool_id"] != p["tool_id"])

@@ -146,10 +146,13 @@ struct Plunge {
   double z = 0.0;
   // How the machine gets there and away (motion.hpp): rapid down to approachZ,
   // feed to z, feed to leadOut (if any), rapid up to retractZ and on to the next
-  // plunge at that height.
+  // plunge at that height. A plunge deeper than those around it (a hollow of a
+  // sculptured floor) first feeds up to leadOutZ, where its way out clears their
+  // steps and the floor.
   double approachZ = 0.0;
   double retractZ = 0.0;
   std::optional<Vec2> leadOut;
+  std::optional<double> leadOutZ;  // above z, or none: the lead-out is at z
   bool startHole = false;   // a centre-cutting hole for a non-centre-cutting plunger
   bool start = false;       // into solid (centre-cutting) or a start hole: no engagement limit
   double engagement = 0.0;  // radial engagement met, mm (engagement.hpp)
@@ -191,6 +194,7 @@ struct PlanStats {
   int overEngaged = 0;          // plunges (not starts) cutting wider than their tool's max_engagement
   int thinCuts = 0;             // plunges cutting narrower than their tool's min_engagement
   int leadOuts = 0;             // plunges with a lead-out (motion.hpp)
+  int raisedLeadOuts = 0;       // of them, fed up to leadOutZ first (in a ring of steps, motion.hpp)
   int noLeadOutMaterial = 0;    // without one: every way out bites deeper than half the lead-out, or the floor rises
   int noLeadOutWalls = 0;       // without one: no way out keeps the allowance to walls and islands
   int levels = 1;               // most levels any tool needs for its flute length
