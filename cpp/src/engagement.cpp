@@ -11,6 +11,7 @@
 #include "plunge/covering.hpp"
 #include "plunge/error.hpp"
 #include "plunge/polygon.hpp"
+#include "plunge/sequencing.hpp"
 
 namespace plunge {
 
@@ -41,6 +42,10 @@ constexpr double kRingChord = 0.9;
 // and at least kMinGainCells of them (fewer is the raster's noise).
 constexpr double kMinGainShare = 0.003;
 constexpr int kMinGainCells = 3;
+// The rings and the slivers take a plunge measured up to this share of a cell
+// over the limit: the raster measures to about a cell, and another raster (a
+// G-code checker's) may see a cell more; motion.hpp counts 1.5 cells over.
+constexpr double kMeasureSlack = 0.5;
 // Rounds of rings that cut nothing before a tool gives up on its targets.
 constexpr int kStallRounds = 3;
 
@@ -412,6 +417,7 @@ class Grower {
   // Grows the tool's cut over its targets (the plunges the plan gave it).
   void grow(const Tool& tool, const std::vector<Plunge>& planned) {
     settle();
+    const size_t begin = order_.size();
     const Cutter cutter = cutterOf(tool);
     const double r = cutter.radius, e = std::min(engagementLimit(tool), 2 * r);
     const double coreR = coreRadius(tool);
@@ -454,7 +460,7 @@ class Grower {
           continue;
         }
         const HeightField::Contact k = stock_.contact(c, cutter, *z, coreR);
-        if (!k.coreClear || k.engagement > e + 2 * h) continue;
+        if (!k.coreClear || k.engagement > e + kMeasureSlack * h) continue;
         if (k.engagement < tool.minEngagement) {
           thin.push_back({c, *z});
           continue;
@@ -476,7 +482,24 @@ class Grower {
       settle();
       stalls = targets.left() < before ? 0 : stalls + 1;
     }
-    finishSlivers(tool, cutter, planned, targets);
+    finishSlivers(tool, cutter, planned, targets, at);
+    shortenTour(begin);
+  }
+
+  // The tour within the order the growth allows: a plunge measured against
+  // the stock the plunges before it left meets the same stock in any order
+  // that keeps it after every plunge whose disk reaches its own (the raster's
+  // cells, a margin of two, included), so depths, engagement, cores and starts
+  // stay as measured while the tour shortens (sequencing.hpp).
+  void shortenTour(size_t begin) {
+    if (order_.size() - begin < 3) return;
+    std::vector<Vec2> at;
+    for (size_t k = begin; k < order_.size(); ++k) at.push_back({order_[k].x, order_[k].y});
+    const double reach = order_[begin].diameter + 2 * stock_.spacing() + 0.01;
+    const std::vector<int> order =
+        shortenKeepingOrder(at, [&](int a, int b) { return dist(at[a], at[b]) < reach; });
+    const std::vector<Plunge> was(order_.begin() + static_cast<long>(begin), order_.end());
+    for (size_t k = 0; k < order.size(); ++k) order_[begin + k] = was[order[k]];
   }
 
   // Over a sculptured floor the paths' plunges stop at their own heights, a
@@ -693,16 +716,18 @@ class Grower {
   // Pieces of the tool's planned cut narrower than the stock's cells, which the
   // raster cannot see, measured exactly (polygons): each is cut by the planned
   // plunge that covers most of it, where that keeps the limits.
-  void finishSlivers(const Tool& tool, const Cutter& cutter, const std::vector<Plunge>& planned, Targets& targets) {
+  void finishSlivers(const Tool& tool, const Cutter& cutter, const std::vector<Plunge>& planned, Targets& targets,
+                     Vec2 at) {
     settle();
     std::vector<Circle> want;
     for (const Plunge& p : planned) want.push_back({{p.x, p.y}, cutter.radius});
     const double coreR = coreRadius(tool);
-    const double e = std::min(engagementLimit(tool), 2 * cutter.radius) + 2 * stock_.spacing();
+    const double e = std::min(engagementLimit(tool), 2 * cutter.radius) + kMeasureSlack * stock_.spacing();
     Polygons left = poly::subtract(poly::unionOfDisks(want), cleared_);
     if (in_.maxWallStock > 0)  // beyond the wall band, as the targets
       left = poly::intersect(left,
                              poly::offset(allowedRegion(region_, in_.radialAllowance), -kWallBand * in_.maxWallStock));
+    std::vector<size_t> chosen;  // for each piece, the planned plunge covering most of it
     for (const Polygons& piece : poly::components(left)) {
       if (poly::area(piece) < 0.01) continue;
       int best = -1;
@@ -715,11 +740,19 @@ class Grower {
           best = static_cast<int>(k);
         }
       }
-      if (best < 0) continue;
-      const Plunge& s = planned[best];
+      if (best >= 0) chosen.push_back(static_cast<size_t>(best));
+    }
+    // Nearest first from where the tool is, each measured when its turn comes.
+    while (!chosen.empty()) {
+      size_t next = 0;
+      for (size_t i = 1; i < chosen.size(); ++i)
+        if (dist(want[chosen[i]].c, at) < dist(want[chosen[next]].c, at) - 1e-9) next = i;
+      const Plunge& s = planned[chosen[next]];
+      chosen.erase(chosen.begin() + static_cast<long>(next));
       const HeightField::Contact k = stock_.contact({s.x, s.y}, cutter, s.z, coreR);
       if (!k.coreClear || k.engagement > e) continue;
       place(tool, cutter, {s.x, s.y}, s.z, targets, false);
+      at = {s.x, s.y};
     }
     settle();
   }
@@ -741,14 +774,30 @@ class Grower {
                     Vec2& at) {
     const double coreR = coreRadius(tool);
     const double e = std::min(engagementLimit(tool), 2 * cutter.radius);
-    int placed = 0;
-    for (const Plunge& s : planned) {
+    auto keeps = [&](const Plunge& s) {
       const Vec2 c{s.x, s.y};
-      if (targets.gain(c, cutter, s.z, stock_) < 1) continue;
+      if (targets.gain(c, cutter, s.z, stock_) < 1) return false;
       const HeightField::Contact k = stock_.contact(c, cutter, s.z, coreR);
-      if (!k.coreClear || k.engagement > e) continue;
-      place(tool, cutter, c, s.z, targets, false);
-      at = c;
+      return k.coreClear && k.engagement <= e;
+    };
+    // Those that keep the limits now, nearest first from where the tool is
+    // (each measured again when its turn comes: the ones before may cut
+    // what it would have).
+    std::vector<size_t> left;
+    for (size_t k = 0; k < planned.size(); ++k)
+      if (keeps(planned[k])) left.push_back(k);
+    int placed = 0;
+    while (!left.empty()) {
+      size_t best = 0;
+      for (size_t i = 1; i < left.size(); ++i)
+        if (dist(Vec2{planned[left[i]].x, planned[left[i]].y}, at) <
+            dist(Vec2{planned[left[best]].x, planned[left[best]].y}, at) - 1e-9)
+          best = i;
+      const Plunge& s = planned[left[best]];
+      left.erase(left.begin() + static_cast<long>(best));
+      if (!keeps(s)) continue;
+      place(tool, cutter, {s.x, s.y}, s.z, targets, false);
+      at = {s.x, s.y};
       ++placed;
     }
     return placed;

@@ -437,6 +437,47 @@ double tourLength(const std::vector<Vec2>& points, const std::vector<int>& order
   return len;
 }
 
+std::vector<int> shortenKeepingOrder(const std::vector<Vec2>& p, const std::function<bool(int, int)>& dependent) {
+  constexpr int kMaxSegment = 3, kMaxPasses = 50;
+  const int n = static_cast<int>(p.size());
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  auto d = [&](int a, int b) { return dist(p[a], p[b]); };
+  bool improved = true;
+  for (int pass = 0; improved && pass < kMaxPasses; ++pass) {
+    improved = false;
+    for (int i = 1; i < n; ++i)
+      for (int len = 1; len <= kMaxSegment && i + len <= n; ++len) {
+        // The run order[i .. i + len - 1], between prev and next.
+        const int first = order[i], last = order[i + len - 1], prev = order[i - 1];
+        const bool hasNext = i + len < n;
+        const double saved = d(prev, first) + (hasNext ? d(last, order[i + len]) - d(prev, order[i + len]) : 0.0);
+        auto passes = [&](int q) {
+          for (int k = i; k < i + len; ++k)
+            if (dependent(order[k], q) || dependent(q, order[k])) return false;
+          return true;
+        };
+        int after = -1;  // insert after the point now at this position
+        double best = 1e-9;
+        for (int j = i - 1; j >= 1 && passes(order[j]); --j) {
+          const double gain = saved - (d(order[j - 1], first) + d(last, order[j]) - d(order[j - 1], order[j]));
+          if (gain > best) best = gain, after = j - 1;
+        }
+        for (int j = i + len; j < n && passes(order[j]); ++j) {
+          const double added = d(order[j], first) + (j + 1 < n ? d(last, order[j + 1]) - d(order[j], order[j + 1]) : 0.0);
+          if (saved - added > best) best = saved - added, after = j;
+        }
+        if (after < 0) continue;
+        const std::vector<int> run(order.begin() + i, order.begin() + i + len);
+        order.erase(order.begin() + i, order.begin() + i + len);
+        const int at = after < i ? after + 1 : after - len + 1;
+        order.insert(order.begin() + at, run.begin(), run.end());
+        improved = true;
+      }
+  }
+  return order;
+}
+
 std::vector<int> tour(const std::vector<Vec2>& points, bool closed, std::optional<Vec2> start,
                       const TourOptions& options) {
   for (const Vec2& p : points)

@@ -150,3 +150,40 @@ TEST(Sequencing, DegenerateInput) {
   EXPECT_THROW(tour({{0, 0}, {1, INFINITY}}), Error);
   EXPECT_THROW(tour({{0, 0}}, true, Vec2{INFINITY, 0}), Error);
 }
+
+// Or-opt within an order: every dependent pair keeps its order, the first
+// point stays first, and the path never gets longer; it does get shorter
+// where points are free to move.
+TEST(Sequencing, ShortenKeepingOrderKeepsEveryDependentPair) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 100);
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<Vec2> p(60);
+    for (Vec2& q : p) q = {u(rng), u(rng)};
+    const double reach = 5 + trial;  // from almost free to tightly bound
+    auto dependent = [&](int a, int b) { return dist(p[a], p[b]) < reach; };
+    std::vector<int> given(p.size());
+    std::iota(given.begin(), given.end(), 0);
+    const std::vector<int> order = shortenKeepingOrder(p, dependent);
+    std::vector<int> sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    ASSERT_EQ(sorted, given);
+    EXPECT_EQ(order.front(), 0);
+    std::vector<int> at(p.size());
+    for (size_t k = 0; k < order.size(); ++k) at[order[k]] = static_cast<int>(k);
+    for (int a = 0; a < 60; ++a)
+      for (int b = a + 1; b < 60; ++b)
+        if (dependent(a, b)) {
+          EXPECT_LT(at[a], at[b]) << trial << " " << a << " " << b;
+        }
+    EXPECT_LE(tourLength(p, order, false), tourLength(p, given, false) + 1e-9);
+    if (trial == 0) {
+      EXPECT_LT(tourLength(p, order, false), 0.5 * tourLength(p, given, false));
+    }
+  }
+  // A chain (each point depends on the next) cannot move at all.
+  std::vector<Vec2> chain;
+  for (int k = 0; k < 10; ++k) chain.push_back({(k % 2) * 50.0, 1.0 * k});
+  const std::vector<int> fixed = shortenKeepingOrder(chain, [](int a, int b) { return std::abs(a - b) == 1; });
+  for (int k = 0; k < 10; ++k) EXPECT_EQ(fixed[k], k);
+}

@@ -8,6 +8,7 @@
 // Every random choice comes from the seed: same points and seed, same order.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,5 +32,15 @@ std::vector<int> tour(const std::vector<Vec2>& points, bool closed = true,
                       std::optional<Vec2> start = std::nullopt, const TourOptions& options = {});
 
 double tourLength(const std::vector<Vec2>& points, const std::vector<int>& order, bool closed);
+
+// Shortens the open path points[0], points[1], ... by Or-opt moves (a run of
+// up to three consecutive points moved elsewhere, in its order) that never
+// move a point past one it depends on: for every pair with dependent(a, b),
+// the returned order keeps a and b in their given order. The first point
+// stays first. Deterministic. For orders a constraint made: a plunge within
+// an engagement limit must follow the plunges whose cut it grows from
+// (engagement.hpp).
+std::vector<int> shortenKeepingOrder(const std::vector<Vec2>& points,
+                                     const std::function<bool(int, int)>& dependent);
 
 }  // namespace plunge
