@@ -240,8 +240,9 @@ enum class NoLeadOut { None, Material, Walls };
 // the moved disk, the most room from the walls first), then one toward a hole
 // cut before (whose graze is bounded by geometry, below), then any that grazes
 // material at its flanks by at most half the lead-out beyond the plunge's own
-// hole, measured with the holes' polygons. Cheap tests first, so the exact
-// ones run on few directions.
+// hole, measured with the holes' polygons, then one raised out of the steps
+// around (raisedTo: the height it feeds up to first). Cheap tests first, so
+// the exact ones run on few directions.
 std::optional<Vec2> leadOutOf(const MotionOptions& in, const Region& region, const DepthSolver& depths,
                               const HeightField& stock, const Touched& touched, const Plunge& p,
                               const Cutter& cutter, std::optional<Plunge> back, NoLeadOut& why,
@@ -348,12 +349,11 @@ std::optional<Vec2> leadOutOf(const MotionOptions& in, const Region& region, con
       heights.push_back({hi, end});
     }
     std::stable_sort(heights.begin(), heights.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    const int fine = samples;
     std::optional<std::pair<double, Vec2>> best;
     for (auto [z, end] : heights) {
       if (best && z >= best->first) break;
-      for (int s = 1; s <= fine && z <= highest; ++s)
-        z = std::max(z, depths.plungeHeight(c + (end - c) * (static_cast<double>(s) / fine), cutter,
+      for (int s = 1; s <= samples && z <= highest; ++s)
+        z = std::max(z, depths.plungeHeight(c + (end - c) * (static_cast<double>(s) / samples), cutter,
                                             in.floorAllowance, in.radialAllowance));
       if (z <= highest && (!best || z < best->first)) best = {{z, end}};
     }

@@ -10,7 +10,9 @@
 // - Lead-out: after reaching depth the tool feeds `lead_out` sideways into
 //   space already cleared (no material beyond the skin under its new disk),
 //   the direction farthest from the walls, checked against walls, islands and
-//   the floor; none where there is no room.
+//   the floor; none where there is no room. A plunge deeper than those around
+//   it (uneven depths over a sculptured floor) first feeds up out of their
+//   steps, at most `lead_out` (Plunge::leadOutZ).
 // - The engagement, core and flute checks of every plunge, measured on the
 //   same simulation, and the time model with these heights.
 #pragma once
