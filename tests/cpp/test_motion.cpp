@@ -87,19 +87,31 @@ TEST(Motion, ShortFlutesCutInLevels) {
   EXPECT_TRUE(p.warnings.empty() || p.warnings.front().find("flute") == std::string::npos);
 }
 
+// A 100 x 60 mm box, flat floor at -20, one 20 mm tool, a 1 mm lead-out:
+// the machine's options alone, for plunges made by hand.
+struct HandMadeBox {
+  const Region region{{{0, 0}, {100, 0}, {100, 60}, {0, 60}}, {}};
+  const std::unique_ptr<FloorSurface> floor = makeFlatFloor(-20);
+  const DepthSolver depths{*floor, region.minCorner(), region.maxCorner(), 2.0};
+  MotionOptions o = [] {
+    MotionOptions m;
+    m.tools = ToolTable({{20, 1, 150}});
+    m.topZ = 0;
+    m.safeZ = 10;
+    m.leadOut = 1.0;
+    return m;
+  }();
+};
+
 // Motion on its own: two plunges of a row, made by hand, with nothing but the
 // machine's options (no plan input). The second cuts a crescent beside the
 // first: it rapids down to just above the stock, leads out back into the first
 // hole, and the first retracts no higher than the move over the stock needs.
 TEST(Motion, OnItsOwnOptions) {
-  const Region region({{0, 0}, {100, 0}, {100, 60}, {0, 60}}, {});
-  const std::unique_ptr<FloorSurface> floor = makeFlatFloor(-20);
-  const DepthSolver depths(*floor, region.minCorner(), region.maxCorner(), 2.0);
-  MotionOptions o;
-  o.tools = ToolTable({{20, 1, 150}});
-  o.topZ = 0;
-  o.safeZ = 10;
-  o.leadOut = 1.0;
+  const HandMadeBox box;
+  const Region& region = box.region;
+  const DepthSolver& depths = box.depths;
+  const MotionOptions& o = box.o;
   Plan plan;
   plan.plunges = {plungeOf(o.tools.byId(1), {30, 30}, -20), plungeOf(o.tools.byId(1), {38, 30}, -20)};
   planMotion(region, depths, plan, o);
@@ -121,14 +133,10 @@ TEST(Motion, OnItsOwnOptions) {
 // lead-out feeds up to the steps' height first, if they are no higher than the
 // lead-out is long; the G-code and the time model follow.
 TEST(Motion, ALeadOutRisesOutOfTheStepsAround) {
-  const Region region({{0, 0}, {100, 0}, {100, 60}, {0, 60}}, {});
-  const std::unique_ptr<FloorSurface> floor = makeFlatFloor(-20);
-  const DepthSolver depths(*floor, region.minCorner(), region.maxCorner(), 2.0);
-  MotionOptions o;
-  o.tools = ToolTable({{20, 1, 150}});
-  o.topZ = 0;
-  o.safeZ = 10;
-  o.leadOut = 1.0;
+  const HandMadeBox box;
+  const Region& region = box.region;
+  const DepthSolver& depths = box.depths;
+  const MotionOptions& o = box.o;
   for (double step : {0.8, 1.5}) {
     Plan plan;
     for (int k = 0; k < 6; ++k)
