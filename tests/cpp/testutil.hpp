@@ -15,6 +15,15 @@
 
 namespace plunge::test {
 
+// A small job as plan input JSON: a 100 x 60 mm box with a triangular island,
+// two tools, a flat floor, allowances (the output files' tests plan it).
+inline std::string smallJobJson() {
+  return R"({"version": 1, "boundary": [[0,0],[100,0],[100,60],[0,60]],
+    "islands": [[[40,20],[60,20],[50,40]]], "tools": [{"diameter": 12, "id": 4}, {"diameter": 6}],
+    "top_z": 0, "safe_z": 5, "floor": {"z": -10}, "allowance": {"radial": 0.2, "floor": 0.1},
+    "strategy": "packing", "seed": 3})";
+}
+
 // A random star-shaped (hence simple) polygon around c with radii in [r0, r1].
 inline Loop randomStar(std::mt19937& rng, Vec2 c, double r0, double r1, int n) {
   std::uniform_real_distribution<double> rad(r0, r1), jitter(-0.3, 0.3);

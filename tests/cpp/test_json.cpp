@@ -9,23 +9,17 @@
 #include <sstream>
 
 #include "plunge/error.hpp"
-#include "plunge/gcode.hpp"
 #include "plunge/json.hpp"
 #include "plunge/plan.hpp"
-#include "plunge/svg.hpp"
 #include "plunge/validate.hpp"
+#include "testutil.hpp"
 
 using namespace plunge;
 using nlohmann::json;
 
 namespace {
 
-json base() {
-  return json::parse(R"({"version": 1, "boundary": [[0,0],[100,0],[100,60],[0,60]],
-    "islands": [[[40,20],[60,20],[50,40]]], "tools": [{"diameter": 12, "id": 4}, {"diameter": 6}],
-    "top_z": 0, "safe_z": 5, "floor": {"z": -10}, "allowance": {"radial": 0.2, "floor": 0.1},
-    "strategy": "packing", "seed": 3})");
-}
+json base() { return json::parse(test::smallJobJson()); }
 
 std::string parseError(const std::string& text) {
   try {
@@ -48,7 +42,7 @@ std::string withChange(const std::string& pointer, const json& value) {
 
 }  // namespace
 
-TEST(Io, ParsesTheContractExample) {
+TEST(Json, ParsesTheContractExample) {
   const PlanInput in = planInputFromJson(base().dump());
   EXPECT_EQ(in.boundary.size(), 4u);
   EXPECT_EQ(in.islands.size(), 1u);
@@ -60,7 +54,7 @@ TEST(Io, ParsesTheContractExample) {
   EXPECT_EQ(in.seed, 3u);
 }
 
-TEST(Io, BadInputNamesTheProblem) {
+TEST(Json, BadInputNamesTheProblem) {
   EXPECT_NE(parseError("{not json").find("invalid JSON"), std::string::npos);
   EXPECT_NE(parseError("[1,2]").find("expected a JSON object"), std::string::npos);
   EXPECT_NE(parseError(withChange("/boundary", json::value_t::discarded)).find("boundary: required"), std::string::npos);
@@ -82,7 +76,7 @@ TEST(Io, BadInputNamesTheProblem) {
   EXPECT_EQ(parseError(base().dump()), "");
 }
 
-TEST(Io, OptionsAreParsedByName) {
+TEST(Json, OptionsAreParsedByName) {
   json j = base();
   j["strategy"] = "grid";
   j["packing_order"] = "lattice";
@@ -111,7 +105,7 @@ TEST(Io, OptionsAreParsedByName) {
   EXPECT_THROW(tourMethodFromName("genetic"), Error);  // plunge.tour's method too
 }
 
-TEST(Io, RelativePathsStartAtTheInputFilesFolder) {
+TEST(Json, RelativePathsStartAtTheInputFilesFolder) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("plunge-io-test-" + std::to_string(::getpid()));
   fs::create_directories(dir / "job");
@@ -140,7 +134,7 @@ TEST(Io, RelativePathsStartAtTheInputFilesFolder) {
   fs::remove_all(dir);
 }
 
-TEST(Io, JsonOutputFollowsTheContract) {
+TEST(Json, JsonOutputFollowsTheContract) {
   PlanInput in = planInputFromJson(base().dump());
   const Plan p = plan(in);
   const json out = json::parse(planToJson(p));
@@ -152,86 +146,4 @@ TEST(Io, JsonOutputFollowsTheContract) {
                         "travel_length", "planning_seconds"})
     EXPECT_TRUE(out["stats"].contains(k)) << k;
   EXPECT_EQ(out["stats"]["plunge_count"].get<int>(), static_cast<int>(p.plunges.size()));
-}
-
-TEST(Io, SvgDrawsEveryPlungeAndALegend) {
-  PlanInput in = planInputFromJson(base().dump());
-  const Plan p = plan(in);
-  const std::string svg = planToSvg(in, p);
-  size_t circles = 0;
-  for (size_t at = svg.find("<circle"); at != std::string::npos; at = svg.find("<circle", at + 1)) ++circles;
-  EXPECT_EQ(circles, p.plunges.size() + p.stats.perTool.size());  // plunges + legend swatches
-  EXPECT_NE(svg.find("% covered"), std::string::npos);
-  EXPECT_NE(svg.find("T4"), std::string::npos);
-  EXPECT_EQ(svg.rfind("</svg>"), svg.size() - 7);
-}
-
-// The G-code parsed back gives the plan: one tool change per tool, one feed
-// plunge per plunge at its depth and position, from its approach height, its
-// lead-out, and rapids across at the retract height the plan gives.
-TEST(Io, GcodeParsesBackToThePlan) {
-  PlanInput in = planInputFromJson(base().dump());
-  const Plan p = plan(in);
-  std::istringstream g(planToGcode(in, p));
-  std::string line;
-  double x = NAN, y = NAN, z = NAN;
-  int tool = -1;
-  std::vector<Plunge> seen;
-  std::vector<double> rapidHeights;  // z of each rapid across, before each plunge
-  std::vector<int> changes;
-  while (std::getline(g, line)) {
-    if (line.empty() || line[0] == '(') continue;
-    std::istringstream w(line);
-    std::string word;
-    std::map<char, double> v;
-    std::vector<std::string> codes;
-    while (w >> word) {
-      if (word[0] == 'G' || word[0] == 'M') codes.push_back(word);
-      else v[word[0]] = std::stod(word.substr(1));
-    }
-    if (v.count('T')) {
-      tool = static_cast<int>(v['T']);
-      changes.push_back(tool);
-    }
-    const bool rapid = !codes.empty() && codes[0] == "G0", feed = !codes.empty() && codes[0] == "G1";
-    if (rapid && (v.count('X') || v.count('Y'))) rapidHeights.push_back(z);
-    if (feed && v.count('Z')) {
-      EXPECT_TRUE(v.count('F'));
-      Plunge q;
-      q.x = x;
-      q.y = y;
-      q.toolId = tool;
-      q.approachZ = z;  // where the feed starts
-      q.z = v['Z'];
-      seen.push_back(q);
-    } else if (feed) {
-      ASSERT_FALSE(seen.empty());
-      seen.back().leadOut = Vec2{v['X'], v['Y']};
-    }
-    if (v.count('X')) x = v['X'];
-    if (v.count('Y')) y = v['Y'];
-    if (v.count('Z')) z = v['Z'];
-  }
-  ASSERT_EQ(seen.size(), p.plunges.size());
-  ASSERT_EQ(rapidHeights.size(), p.plunges.size());
-  int leadOuts = 0;
-  for (size_t i = 0; i < seen.size(); ++i) {
-    const Plunge& q = p.plunges[i];
-    EXPECT_NEAR(seen[i].x, q.x, 1e-4);
-    EXPECT_NEAR(seen[i].y, q.y, 1e-4);
-    EXPECT_NEAR(seen[i].z, q.z, 1e-4);
-    EXPECT_NEAR(seen[i].approachZ, q.approachZ, 1e-4);
-    EXPECT_EQ(seen[i].toolId, q.toolId);
-    ASSERT_EQ(seen[i].leadOut.has_value(), q.leadOut.has_value());
-    if (q.leadOut) {
-      ++leadOuts;
-      EXPECT_NEAR(dist(*seen[i].leadOut, *q.leadOut), 0.0, 1e-3);
-    }
-    // Across at the previous plunge's retract height (safe_z after a tool change).
-    const bool first = i == 0 || p.plunges[i - 1].toolId != q.toolId;
-    EXPECT_NEAR(rapidHeights[i], first ? in.safeZ : p.plunges[i - 1].retractZ, 1e-4);
-    EXPECT_LE(q.approachZ, rapidHeights[i] + 1e-4);
-  }
-  EXPECT_GT(leadOuts, 0);
-  EXPECT_EQ(changes.size(), p.stats.perTool.size());
 }

@@ -1,0 +1,127 @@
+// The plan as RS-274 G-code (gcode.hpp), parsed back.
+#include <gtest/gtest.h>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+#include "plunge/json.hpp"
+#include "plunge/plan.hpp"
+#include "plunge/gcode.hpp"
+#include "testutil.hpp"
+
+using namespace plunge;
+
+namespace {
+
+// The small job over a wavy floor, its tools limited to half their diameter:
+// plunges stop at different heights, and some lead out raised.
+std::string wavyLimitedJob() {
+  std::string j = test::smallJobJson();
+  auto swap = [&](const std::string& from, const std::string& to) { j.replace(j.find(from), from.size(), to); };
+  swap(R"("floor": {"z": -10})", R"j("floor": {"expression": "-10 + 1.5*sin(0.15*x)*cos(0.2*y)"})j");
+  swap(R"({"diameter": 12, "id": 4}, {"diameter": 6})",
+       R"({"diameter": 12, "id": 4, "max_engagement": 6}, {"diameter": 6, "max_engagement": 3})");
+  return j;
+}
+
+}  // namespace
+
+// Checks the program against the plan; returns how many lead-outs it raises.
+static int parsesBack(const PlanInput& in, const Plan& p) {
+  std::istringstream g(planToGcode(in, p));
+  std::string line;
+  double x = NAN, y = NAN, z = NAN;
+  int tool = -1;
+  std::vector<Plunge> seen;
+  std::vector<double> rapidHeights;  // z of each rapid across, before each plunge
+  std::vector<int> changes;
+  while (std::getline(g, line)) {
+    if (line.empty() || line[0] == '(') continue;
+    std::istringstream w(line);
+    std::string word;
+    std::map<char, double> v;
+    std::vector<std::string> codes;
+    while (w >> word) {
+      if (word[0] == 'G' || word[0] == 'M') codes.push_back(word);
+      else v[word[0]] = std::stod(word.substr(1));
+    }
+    if (v.count('T')) {
+      tool = static_cast<int>(v['T']);
+      changes.push_back(tool);
+    }
+    const bool rapid = !codes.empty() && codes[0] == "G0", feed = !codes.empty() && codes[0] == "G1";
+    if (rapid && (v.count('X') || v.count('Y'))) rapidHeights.push_back(z);
+    if (feed && v.count('Z') && !seen.empty() && v['Z'] > z) {
+      seen.back().leadOutZ = v['Z'];  // up before a raised lead-out
+    } else if (feed && v.count('Z')) {
+      EXPECT_TRUE(v.count('F'));
+      Plunge q;
+      q.x = x;
+      q.y = y;
+      q.toolId = tool;
+      q.approachZ = z;  // where the feed starts
+      q.z = v['Z'];
+      seen.push_back(q);
+    } else if (feed) {
+      if (seen.empty()) {
+        ADD_FAILURE() << "a feed sideways before any plunge";
+        return -1;
+      }
+      seen.back().leadOut = Vec2{v['X'], v['Y']};
+    }
+    if (v.count('X')) x = v['X'];
+    if (v.count('Y')) y = v['Y'];
+    if (v.count('Z')) z = v['Z'];
+  }
+  if (seen.size() != p.plunges.size() || rapidHeights.size() != p.plunges.size()) {
+    ADD_FAILURE() << seen.size() << " plunges and " << rapidHeights.size() << " rapids across for "
+                  << p.plunges.size() << " plunges planned";
+    return -1;
+  }
+  int leadOuts = 0, raised = 0;
+  for (size_t i = 0; i < seen.size(); ++i) {
+    const Plunge& q = p.plunges[i];
+    EXPECT_NEAR(seen[i].x, q.x, 1e-4);
+    EXPECT_NEAR(seen[i].y, q.y, 1e-4);
+    EXPECT_NEAR(seen[i].z, q.z, 1e-4);
+    EXPECT_NEAR(seen[i].approachZ, q.approachZ, 1e-4);
+    EXPECT_EQ(seen[i].toolId, q.toolId);
+    EXPECT_EQ(seen[i].leadOut.has_value(), q.leadOut.has_value());
+    if (q.leadOut && seen[i].leadOut) {
+      ++leadOuts;
+      EXPECT_NEAR(dist(*seen[i].leadOut, *q.leadOut), 0.0, 1e-3);
+    }
+    EXPECT_EQ(seen[i].leadOutZ.has_value(), q.leadOutZ.has_value());
+    if (q.leadOutZ && seen[i].leadOutZ) {
+      ++raised;
+      EXPECT_NEAR(*seen[i].leadOutZ, *q.leadOutZ, 1e-4);
+      EXPECT_GT(*q.leadOutZ, q.z);
+      EXPECT_LE(*q.leadOutZ, q.z + in.leadOut + 1e-9);
+    }
+    // Across at the previous plunge's retract height (safe_z after a tool change).
+    const bool first = i == 0 || p.plunges[i - 1].toolId != q.toolId;
+    EXPECT_NEAR(rapidHeights[i], first ? in.safeZ : p.plunges[i - 1].retractZ, 1e-4);
+    EXPECT_LE(q.approachZ, rapidHeights[i] + 1e-4);
+  }
+  EXPECT_GT(leadOuts, 0);
+  EXPECT_EQ(changes.size(), p.stats.perTool.size());
+  return raised;
+}
+
+// The G-code parsed back gives the plan: one tool change per tool, one feed
+// plunge per plunge at its depth and position, from its approach height, its
+// lead-out (fed up to its height first where raised), and rapids across at
+// the retract height the plan gives.
+TEST(Gcode, ParsesBackToThePlan) {
+  for (const std::string& job : {test::smallJobJson(), wavyLimitedJob()}) {
+    SCOPED_TRACE(job);
+    const PlanInput in = planInputFromJson(job);
+    const Plan p = plan(in);
+    const int raised = parsesBack(in, p);
+    EXPECT_EQ(raised, p.stats.raisedLeadOuts);
+    if (job != test::smallJobJson()) {
+      EXPECT_GT(raised, 0);
+    }
+  }
+}
