@@ -108,7 +108,7 @@ py::object planDict(const py::dict& input, bool svg, const py::object& progress)
 }
 
 // Each non-centre-cutting tool's start-hole drill (tools.hpp), by id.
-py::dict startHoleTools(const py::list& tools) {
+py::dict startHoleTools(const py::object& tools) {
   const std::vector<plunge::Tool> ts = plunge::toolsFromJson(toJson(tools, "tools").dump());
   py::dict out;
   for (const plunge::Tool& t : ts)

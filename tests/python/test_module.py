@@ -92,6 +92,9 @@ def test_summary_and_start_hole_tools(plunge):
     assert plunge.start_hole_tools(tools) == {1: 2}  # the smallest centre-cutting tool as wide as the core
     with pytest.raises(ValueError, match="centre-cutting tool at least 8"):
         plunge.start_hole_tools(tools[:1] + tools[2:3])
+    for bad in ({"id": 1, "diameter": 20}, "tools", 3):  # not a list: named, as in plan()
+        with pytest.raises(ValueError, match="tools: expected a list"):
+            plunge.start_hole_tools(bad)
 
 
 def test_non_string_keys(plunge):
