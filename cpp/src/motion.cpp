@@ -392,7 +392,11 @@ void planMotion(const Region& region, const DepthSolver& depths, Plan& plan, con
     const HeightField::Contact k = stock.contact(c, cutter, p.z, coreRadius(t));
     p.engagement = k.engagement;
     const double top = highestAlong(c, c, r);
-    if (!p.start && t.maxEngagement > 0 && k.engagement > t.maxEngagement + tol) ++plan.stats.overEngaged;
+    // A start is exempt where it drills: into solid, or (a tool that does not
+    // cut at its centre) onto its start hole. A start the growth had to make
+    // beside cut material (its fallback) is measured as any plunge.
+    const bool drills = p.start && (k.solid || !t.centerCutting);
+    if (!drills && t.maxEngagement > 0 && k.engagement > t.maxEngagement + tol) ++plan.stats.overEngaged;
     if (!p.start && t.minEngagement > 0 && k.materialCells > 0 && k.engagement < t.minEngagement - tol)
       ++plan.stats.thinCuts;
     if (!t.centerCutting && !k.coreClear) ++coreOnMaterial;
