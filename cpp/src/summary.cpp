@@ -21,7 +21,7 @@ std::string planSummary(const Plan& plan) {
   if (st.levels > 1) s << "; " << st.levels << " levels (flute length)";
   if (const int without = st.noLeadOutMaterial + st.noLeadOutWalls; st.leadOuts + without > 0) {
     s << "; lead-outs on " << st.leadOuts << " plunges";
-    if (st.raisedLeadOuts) s << " (" << st.raisedLeadOuts << " raised out of their neighbours' steps)";
+    if (st.raisedLeadOuts) s << ", " << st.raisedLeadOuts << " of them raised out of their neighbours' steps";
     if (without)
       s << " (none on " << st.noLeadOutMaterial << " with material all round, " << st.noLeadOutWalls
         << " with no room at the walls)";

@@ -71,9 +71,14 @@ def main():
              op.Summary, "", "operations in the job (each tool cuts its own plunges):"]
     for o in job.Operations.Group:
         tc = o.ToolController
-        # Plunges: feeds down (G1 with Z only; the lead-outs move in X Y) and cycles.
-        plunges = sum(1 for c in o.Path.Commands
-                      if c.Name in ("G81", "G83") or (c.Name == "G1" and "Z" in c.Parameters and "X" not in c.Parameters))
+        # Plunges: feeds down (G1 in Z only; a raised lead-out feeds up first,
+        # the lead-outs move in X Y) and cycles.
+        plunges, z = 0, None
+        for c in o.Path.Commands:
+            down = c.Name == "G1" and "Z" in c.Parameters and "X" not in c.Parameters and "Y" not in c.Parameters \
+                and (z is None or c.Parameters["Z"] < z)
+            plunges += c.Name in ("G81", "G83") or down
+            z = c.Parameters.get("Z", z) if c.Name in ("G0", "G1") else z
         lines.append("  %-28s T%d %5.1f mm  %3d plunges, plunge feed %s" % (
             o.Label, tc.ToolNumber, float(tc.Tool.Diameter), plunges,
             "%g mm/min" % tc.VertFeed.getValueAs("mm/min").Value))

@@ -22,6 +22,6 @@ TEST(Summary, SaysThePlansOwnFigures) {
   p.stats.raisedLeadOuts = 3;
   p.stats.startHoles = 2;
   const std::string t = planSummary(p);
-  EXPECT_NE(t.find("(3 raised"), std::string::npos) << t;
+  EXPECT_NE(t.find(", 3 of them raised"), std::string::npos) << t;
   EXPECT_NE(t.find("2 start holes"), std::string::npos) << t;
 }

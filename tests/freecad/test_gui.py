@@ -5,6 +5,7 @@ commands, panels, tree and simulators (see there). Screenshots are kept in
 build/test-artifacts/."""
 import json
 import os
+import re
 import shutil
 import subprocess
 
@@ -57,6 +58,12 @@ def result(out):
     assert not os.path.exists(error), open(error).read()
     doc = os.path.join(example, "plunge_example.FCStd")
     assert os.path.exists(doc), run.stdout[-2000:] + run.stderr[-2000:]
+    # The demo's summary: the operations' plunges (feeds down in their Paths)
+    # are the plan's, a raised lead-out's feed up not among them.
+    lines = open(os.path.join(example, "summary.txt")).read().splitlines()
+    total = int(re.match(r"(\d+) plunges \(", lines[1]).group(1))
+    per_op = [int(m.group(1)) for m in (re.search(r"(\d+) plunges, plunge feed", l) for l in lines) if m]
+    assert per_op and sum(per_op) == total, lines
     result_file = os.path.join(out, "gui_result.json")
     if os.path.exists(result_file):
         os.remove(result_file)
