@@ -127,14 +127,21 @@ class Targets {
         points_[k].deferred = true;
     }, false);
   }
-  // Marks the points cut (to their target height, within the skin) as done.
+  // Marks the points cut to their target height (within the skin), or to
+  // within the floor stock they may keep, as done.
   void update(Vec2 c, double r, const HeightField& stock) {
     forEachOpen(c, r, [&](size_t k) {
-      if (stock.heightAt(points_[k].p) <= points_[k].z + kEngagementSkin) {
+      if (stock.heightAt(points_[k].p) <= std::max(points_[k].z + kEngagementSkin, points_[k].enough)) {
         points_[k].done = true;
         --left_;
       }
     });
+  }
+  // Over a sculptured floor a point cut to `enough(p)` needs no more: what is
+  // left there is the floor's stock, the finisher's.
+  template <class F>
+  void keepAbove(F enough) {
+    for (Point& q : points_) q.enough = enough(q.p);
   }
   // Gives up the points `skip` says need no cutting.
   template <class F>
@@ -154,6 +161,7 @@ class Targets {
     double z;
     bool done;
     bool deferred = false;
+    double enough = -std::numeric_limits<double>::infinity();
   };
   long long key(Vec2 p) const {
     return pack(static_cast<long>(std::floor(p.x / bucket_)), static_cast<long>(std::floor(p.y / bucket_)));
@@ -423,6 +431,7 @@ class Grower {
     const double coreR = coreRadius(tool);
     const double h = stock_.spacing();
     Targets targets(planned, cutter, stock_);
+    keepFloorStock(targets);
     for (const Plunge& p : planned) targets.update({p.x, p.y}, r, stock_);
     // Material in the wall band is the walls' stock (kept within max_wall_stock
     // by the contour's spacing), not a target: chasing the scallops the planned
@@ -442,7 +451,6 @@ class Grower {
     Vec2 at = order_.empty() ? (in_.start ? *in_.start : region_.loops()[0].front())
                              : Vec2{order_.back().x, order_.back().y};
     growAlongPaths(tool, cutter, centres, targets, minGain, at);
-    forgetFloorStock(targets);
     int stalls = 0;  // rounds that cut no target point (a guard: each round should)
     while (targets.left() > 0 && stalls < kStallRounds) {
       progress_.tick();
@@ -477,8 +485,8 @@ class Grower {
             at = c;
             ++accepted;
           }
-      if (accepted == 0) accepted = finishPlanned(tool, cutter, planned, targets, at);
-      if (accepted == 0 && !startAt(tool, cutter, planned, triedStart, targets, at)) break;
+      if (accepted == 0) accepted = finishPlanned(tool, cutter, planned, targets, minGain, at);
+      if (accepted == 0 && !startAt(tool, cutter, planned, triedStart, targets, minGain, at)) break;
       settle();
       stalls = targets.left() < before ? 0 : stalls + 1;
     }
@@ -502,19 +510,20 @@ class Grower {
     for (size_t k = 0; k < order.size(); ++k) order_[begin + k] = was[order[k]];
   }
 
-  // Over a sculptured floor the paths' plunges stop at their own heights, a
-  // little above the planned ones in places. What they leave within the floor
-  // stock limit (max_floor_stock, kFloorBand of it) is the floor's stock, as
-  // in the rest step (stock.hpp), not a target: a plunge for it would cut a
-  // sliver of a few tenths (the planned rest plunges, where it is thicker,
-  // stay targets).
-  void forgetFloorStock(Targets& targets) const {
+  // Over a sculptured floor the growth's plunges stop at their own heights,
+  // a little above the planned ones in places. What they leave within the
+  // floor stock limit (max_floor_stock, kFloorBand of it) is the floor's
+  // stock, as in the rest step (stock.hpp), not a target: a plunge for it
+  // would cut a sliver of a few tenths (the planned rest plunges, where it is
+  // thicker, stay targets). A target point is done as soon as it is cut that
+  // low, so a path position that would only deepen such points is not made.
+  void keepFloorStock(Targets& targets) const {
     if (!(in_.maxFloorStock > 0) || !sculptured()) return;
     const FloorSurface& floor = depths_.floor();
     const double keep = in_.floorAllowance + kFloorBand * in_.maxFloorStock;
-    targets.forget([&](Vec2 q) {
+    targets.keepAbove([&](Vec2 q) {
       const double f = floor.height(q);
-      return std::isfinite(f) && stock_.heightAt(q) <= f + keep;
+      return std::isfinite(f) ? f + keep : -std::numeric_limits<double>::infinity();
     });
   }
   bool sculptured() const {
@@ -769,14 +778,15 @@ class Grower {
 
   // Material the rings cannot reach (slivers between their plunges, targets
   // deeper than ring plunges stop over a sculptured floor): every planned
-  // plunge still cutting some that keeps the limits is made as planned.
+  // plunge still cutting some (minGain cells, as everywhere in the growth)
+  // that keeps the limits is made as planned.
   int finishPlanned(const Tool& tool, const Cutter& cutter, const std::vector<Plunge>& planned, Targets& targets,
-                    Vec2& at) {
+                    int minGain, Vec2& at) {
     const double coreR = coreRadius(tool);
     const double e = std::min(engagementLimit(tool), 2 * cutter.radius);
     auto keeps = [&](const Plunge& s) {
       const Vec2 c{s.x, s.y};
-      if (targets.gain(c, cutter, s.z, stock_) < 1) return false;
+      if (targets.gain(c, cutter, s.z, stock_) < minGain) return false;
       const HeightField::Contact k = stock_.contact(c, cutter, s.z, coreR);
       return k.coreClear && k.engagement <= e;
     };
@@ -805,8 +815,10 @@ class Grower {
 
   // A start where the most target material is left, among the planned
   // positions: a plunge into solid (centre-cutting) or onto a start hole.
+  // None where no planned plunge would cut minGain cells: what is left is the
+  // raster's noise (and slivers, finishSlivers' work).
   bool startAt(const Tool& tool, const Cutter& cutter, const std::vector<Plunge>& planned,
-               std::vector<bool>& tried, Targets& targets, Vec2& at) {
+               std::vector<bool>& tried, Targets& targets, int minGain, Vec2& at) {
     int best = -1, bestGain = 0;
     for (size_t k = 0; k < planned.size(); ++k) {
       if (tried[k]) continue;
@@ -816,7 +828,7 @@ class Grower {
         best = static_cast<int>(k);
       }
     }
-    if (best < 0) return false;
+    if (best < 0 || bestGain < minGain) return false;
     tried[best] = true;
     const Plunge& s = planned[best];
     const Vec2 c{s.x, s.y};

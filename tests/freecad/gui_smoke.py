@@ -524,8 +524,9 @@ def plunge_mill_bit():
             FreeCAD.Rotation(FreeCAD.Vector(1, 0, 0), 125)))
         FreeCADGui.SendMsgToActiveView("ViewFit")
         FreeCADGui.ActiveDocument.setEdit(tc.Tool.Name)
-        # The editor builds its shape first: on a loaded machine that takes seconds.
-        wait(15, lambda: FreeCADGui.Control.activeDialog() and any(
+        # The editor builds its shape first: on a loaded machine that takes
+        # seconds (15 were once not enough); the wait ends when it is open.
+        wait(60, lambda: FreeCADGui.Control.activeDialog() and any(
             b.isVisible() and b.text().replace("&", "") == "Cancel"
             for b in FreeCADGui.getMainWindow().findChildren(QtGui.QPushButton)))
         wait(1)
