@@ -46,6 +46,11 @@ constexpr int kMinGainCells = 3;
 // over the limit: the raster measures to about a cell, and another raster (a
 // G-code checker's) may see a cell more; motion.hpp counts 1.5 cells over.
 constexpr double kMeasureSlack = 0.5;
+// Entries to the paths: a row entered before the contour beside it is cut
+// cuts its ends, which the contour covers (on sculptured floors, where walks
+// stop at deeper neighbours, that costs plunges); so the contour's positions
+// come first unless a row is this many tool radii nearer (the tour's length).
+constexpr double kRowDetour = 1.0;
 // Rounds of rings that cut nothing before a tool gives up on its targets.
 constexpr int kStallRounds = 3;
 
@@ -668,14 +673,15 @@ class Grower {
     std::optional<size_t> piece;  // where the last plunge was
     while (targets.left() > 0) {
       progress_.tick();
-      // The piece of the region the tool is in first, then nearest first
-      // (squared distances; ties by index, so deterministic).
+      // The piece of the region the tool is in first, then nearest first (ties
+      // by index, so deterministic), the contour's positions kRowDetour radii
+      // nearer than the rows'.
       open.erase(std::remove_if(open.begin(), open.end(), [&](size_t k) { return !pos[k].open; }), open.end());
       if (open.empty()) break;
       order.clear();
       for (size_t k : open) {
         const Vec2 d = pos[k].c - at;
-        order.push_back({{piece && paths[pos[k].path].piece != *piece, d.x * d.x + d.y * d.y}, k});
+        order.push_back({{piece && paths[pos[k].path].piece != *piece, std::sqrt(d.x * d.x + d.y * d.y) + (paths[pos[k].path].closed ? 0.0 : kRowDetour * r)}, k});
       }
       std::sort(order.begin(), order.end());
       std::optional<size_t> entry, thin, start;

@@ -115,11 +115,18 @@ def test_sculptured_limited_plans_lead_out_raised_out_of_the_steps(cli, tmp_path
     more than the lead-out is long) and then leads out, so nearly every plunge
     does; the checker replays each raised lead-out at its height. The tour,
     shortened within the order the growth allows, travels at most 1.5 times
-    as far per plunge as the unlimited plan's."""
+    as far per plunge as the unlimited plan's. The plunges stay within 1.3
+    times the row bound or the unlimited plan (its rest plunges in Z count),
+    and leave no more stock on the floor than the unlimited plan."""
     free, _ = post(cli, json.load(open(os.path.join(EXAMPLES, "sculptured.json"))), tmp_path)
     data = mill(json.load(open(os.path.join(EXAMPLES, "sculptured.json"))), kind)
     plan, gcode = post(cli, data, tmp_path)
     stats, plunges = plan["stats"], plan["plunges"]
+    largest = max(t["diameter"] for t in data["tools"])
+    fraction = {"half": 0.5, "quarter": 0.25}[kind]
+    bound = max(free["stats"]["plunge_count"], stats["region_area"] / (0.87 * largest * fraction * largest))
+    assert stats["plunge_count"] <= 1.3 * bound, (stats["plunge_count"], bound)
+    assert stats["max_floor_stock_left"] <= free["stats"]["max_floor_stock_left"] + 1e-6
     per_plunge = stats["travel_length"] / (len(plunges) - 1)
     free_per_plunge = free["stats"]["travel_length"] / (free["stats"]["plunge_count"] - 1)
     assert per_plunge <= 1.5 * free_per_plunge, (per_plunge, free_per_plunge)
