@@ -681,7 +681,8 @@ class Grower {
       order.clear();
       for (size_t k : open) {
         const Vec2 d = pos[k].c - at;
-        order.push_back({{piece && paths[pos[k].path].piece != *piece, std::sqrt(d.x * d.x + d.y * d.y) + (paths[pos[k].path].closed ? 0.0 : kRowDetour * r)}, k});
+        const double detour = paths[pos[k].path].closed ? 0.0 : kRowDetour * r;
+        order.push_back({{piece && paths[pos[k].path].piece != *piece, norm(d) + detour}, k});
       }
       std::sort(order.begin(), order.end());
       std::optional<size_t> entry, thin, start;
