@@ -758,19 +758,34 @@ class Grower {
       }
       if (best >= 0) chosen.push_back(static_cast<size_t>(best));
     }
-    // Nearest first from where the tool is, each measured when its turn comes.
-    while (!chosen.empty()) {
-      size_t next = 0;
-      for (size_t i = 1; i < chosen.size(); ++i)
-        if (dist(want[chosen[i]].c, at) < dist(want[chosen[next]].c, at) - 1e-9) next = i;
-      const Plunge& s = planned[chosen[next]];
-      chosen.erase(chosen.begin() + static_cast<long>(next));
+    placeNearestFirst(tool, cutter, planned, std::move(chosen), targets, at, [&](const Plunge& s) {
       const HeightField::Contact k = stock_.contact({s.x, s.y}, cutter, s.z, coreR);
-      if (!k.coreClear || k.engagement > e) continue;
+      return k.coreClear && k.engagement <= e;
+    });
+    settle();
+  }
+
+  // Makes the planned plunges `left` (indices) nearest first from where the
+  // tool is, each only if `keeps` it when its turn comes (the ones before it
+  // may have cut what it would have). Returns how many it made.
+  template <class Keeps>
+  int placeNearestFirst(const Tool& tool, const Cutter& cutter, const std::vector<Plunge>& planned,
+                        std::vector<size_t> left, Targets& targets, Vec2& at, Keeps keeps) {
+    int placed = 0;
+    while (!left.empty()) {
+      size_t best = 0;
+      for (size_t i = 1; i < left.size(); ++i)
+        if (dist(Vec2{planned[left[i]].x, planned[left[i]].y}, at) <
+            dist(Vec2{planned[left[best]].x, planned[left[best]].y}, at) - 1e-9)
+          best = i;
+      const Plunge& s = planned[left[best]];
+      left.erase(left.begin() + static_cast<long>(best));
+      if (!keeps(s)) continue;
       place(tool, cutter, {s.x, s.y}, s.z, targets, false);
       at = {s.x, s.y};
+      ++placed;
     }
-    settle();
+    return placed;
   }
 
   void place(const Tool& tool, const Cutter& cutter, Vec2 c, double z, Targets& targets, bool start) {
@@ -797,27 +812,11 @@ class Grower {
       const HeightField::Contact k = stock_.contact(c, cutter, s.z, coreR);
       return k.coreClear && k.engagement <= e;
     };
-    // Those that keep the limits now, nearest first from where the tool is
-    // (each measured again when its turn comes: the ones before may cut
-    // what it would have).
+    // Those that keep the limits now, nearest first from where the tool is.
     std::vector<size_t> left;
     for (size_t k = 0; k < planned.size(); ++k)
       if (keeps(planned[k])) left.push_back(k);
-    int placed = 0;
-    while (!left.empty()) {
-      size_t best = 0;
-      for (size_t i = 1; i < left.size(); ++i)
-        if (dist(Vec2{planned[left[i]].x, planned[left[i]].y}, at) <
-            dist(Vec2{planned[left[best]].x, planned[left[best]].y}, at) - 1e-9)
-          best = i;
-      const Plunge& s = planned[left[best]];
-      left.erase(left.begin() + static_cast<long>(best));
-      if (!keeps(s)) continue;
-      place(tool, cutter, {s.x, s.y}, s.z, targets, false);
-      at = {s.x, s.y};
-      ++placed;
-    }
-    return placed;
+    return placeNearestFirst(tool, cutter, planned, std::move(left), targets, at, keeps);
   }
 
   // A start where the most target material is left, among the planned
