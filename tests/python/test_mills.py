@@ -34,6 +34,17 @@ def mill(data, kind):
     return data
 
 
+FRACTION = {"half": 0.5, "quarter": 0.25}  # mill()'s limits, as a share of the diameter
+
+
+def row_bound(data, free, stats, kind):
+    """The issue's bound: rows 0.87 D apart, a plunge every e along them
+    (area / (0.87 D e) for the largest tool), or the unlimited plan where that
+    is more."""
+    largest = max(t["diameter"] for t in data["tools"])
+    return max(free["stats"]["plunge_count"], stats["region_area"] / (0.87 * largest * FRACTION[kind] * largest))
+
+
 def post(cli, data, tmp_path):
     src = tmp_path / "in.json"
     src.write_text(json.dumps(data))
@@ -73,7 +84,7 @@ def test_random_pockets_pass_the_checker(cli, tmp_path, seed, kind):
         assert stats["levels"] == 3  # 12 mm (less the floor allowance) in 5 mm levels
     for k in ("half", "quarter"):
         if kind == k:
-            fraction = 0.5 if k == "half" else 0.25
+            fraction = FRACTION[k]
             for t in data["tools"]:
                 measured = report["max_engagement"].get(t["id"], 0.0)
                 assert measured <= fraction * t["diameter"] + 1.5 * 0.5, (t, measured)
@@ -122,9 +133,7 @@ def test_sculptured_limited_plans_lead_out_raised_out_of_the_steps(cli, tmp_path
     data = mill(json.load(open(os.path.join(EXAMPLES, "sculptured.json"))), kind)
     plan, gcode = post(cli, data, tmp_path)
     stats, plunges = plan["stats"], plan["plunges"]
-    largest = max(t["diameter"] for t in data["tools"])
-    fraction = {"half": 0.5, "quarter": 0.25}[kind]
-    bound = max(free["stats"]["plunge_count"], stats["region_area"] / (0.87 * largest * fraction * largest))
+    bound = row_bound(data, free, stats, kind)
     assert stats["plunge_count"] <= 1.3 * bound, (stats["plunge_count"], bound)
     assert stats["max_floor_stock_left"] <= free["stats"]["max_floor_stock_left"] + 1e-6
     per_plunge = stats["travel_length"] / (len(plunges) - 1)
@@ -189,11 +198,10 @@ def test_limited_plans_stay_near_the_row_bound_travel_little_and_lead_out(cli, t
     per plunge as the unlimited plan, and nearly every plunge leads out."""
     data = json.load(open(os.path.join(SHAPES, shape + ".json")))
     free, _ = post(cli, data, tmp_path)
-    largest = max(t["diameter"] for t in data["tools"])
-    for kind, fraction in (("half", 0.5), ("quarter", 0.25)):
+    for kind in ("half", "quarter"):
         plan, _ = post(cli, mill(data, kind), tmp_path)
         stats = plan["stats"]
-        bound = max(free["stats"]["plunge_count"], stats["region_area"] / (0.87 * largest * fraction * largest))
+        bound = row_bound(data, free, stats, kind)
         assert stats["plunge_count"] <= 1.3 * bound, (kind, stats["plunge_count"], bound)
         # The tour: rows walked in turn, one piece of the region after another.
         per_plunge = stats["travel_length"] / (stats["plunge_count"] - 1)
