@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <tuple>
 #include <unordered_map>
 
 #include "plunge/covering.hpp"
@@ -384,6 +385,49 @@ void refineContour(GrowthPath& path, const Polygons& centres, const Region& regi
   }
 }
 
+// Row positions the contour cuts anyway: every sample of the disk (rings a
+// quarter radius apart) lies within r of a contour position. Between the
+// wall's contour and an island's less than two swaths apart, a row would cut
+// only what the contours cut; the growth enters such a position only where
+// nothing else can be entered or started (a connector to a contour).
+std::vector<std::vector<bool>> coveredByContour(const std::vector<GrowthPath>& paths, double r) {
+  const double cell = 2 * r;
+  auto key = [&](Vec2 p) {
+    return pack(static_cast<long>(std::floor(p.x / cell)), static_cast<long>(std::floor(p.y / cell)));
+  };
+  std::unordered_map<long long, std::vector<Vec2>> contour;
+  for (const GrowthPath& p : paths)
+    if (p.closed)
+      for (Vec2 c : p.at) contour[key(c)].push_back(c);
+  auto cut = [&](Vec2 q) {
+    const long ci = static_cast<long>(std::floor(q.x / cell)), cj = static_cast<long>(std::floor(q.y / cell));
+    for (long j = cj - 1; j <= cj + 1; ++j)
+      for (long i = ci - 1; i <= ci + 1; ++i) {
+        const auto it = contour.find(pack(i, j));
+        if (it != contour.end())
+          for (Vec2 c : it->second)
+            if (dist(c, q) <= r) return true;
+      }
+    return false;
+  };
+  auto covered = [&](Vec2 c) {
+    if (!cut(c)) return false;
+    for (int ring = 1; ring <= 4; ++ring)
+      for (int a = 0; a < 6 * ring; ++a) {
+        const double t = 2 * kPi * a / (6 * ring) + 0.3 * ring;
+        if (!cut(c + Vec2{std::cos(t), std::sin(t)} * (r * ring / 4))) return false;
+      }
+    return true;
+  };
+  std::vector<std::vector<bool>> out;
+  for (const GrowthPath& p : paths) {
+    out.emplace_back(p.at.size(), false);
+    if (!p.closed)
+      for (size_t i = 0; i < p.at.size(); ++i) out.back()[i] = covered(p.at[i]);
+  }
+  return out;
+}
+
 class Grower {
  public:
   Grower(const EngagementOptions& in, const Region& region, const DepthSolver& depths, HeightField& stock)
@@ -561,10 +605,12 @@ class Grower {
     if (scallop > 0)
       for (GrowthPath& p : paths)
         if (p.closed) refineContour(p, centres, region_, r, in_.radialAllowance, kWallBand * in_.maxWallStock);
+    const std::vector<std::vector<bool>> covered = coveredByContour(paths, r);
     enum class Verdict { Skip, Blocked, Solid, Thin, Ok };
     struct Pos {
       Vec2 c;
       size_t path, index;
+      bool covered = false;  // a row position the contour cuts anyway (coveredByContour)
       bool open = true;
       // What a plunge here would meet, measured until a plunge lands nearby.
       bool known = false, skip = false, solid = false, coreClear = true;
@@ -576,7 +622,7 @@ class Grower {
     std::vector<size_t> first;  // each path's first position in pos
     for (size_t k = 0; k < paths.size(); ++k) {
       first.push_back(pos.size());
-      for (size_t i = 0; i < paths[k].at.size(); ++i) pos.push_back({paths[k].at[i], k, i, true, false, false, false, true, 0.0, std::nullopt, false});
+      for (size_t i = 0; i < paths[k].at.size(); ++i) pos.push_back({paths[k].at[i], k, i, covered[k][i], true, false, false, false, true, 0.0, std::nullopt, false});
     }
     if (pos.empty()) return;
     // Positions by cell, to forget the verdicts a new plunge may change.
@@ -638,14 +684,34 @@ class Grower {
       if (!path.closed && (i < 0 || i >= n)) return std::nullopt;
       return first[pos[k].path] + static_cast<size_t>((i + n) % n);
     };
+    // Can a contour's position near c be entered now?
+    auto contourOpens = [&](Vec2 c) {
+      const long ci = static_cast<long>(std::floor(c.x / cell)), cj = static_cast<long>(std::floor(c.y / cell));
+      for (long j = cj - 1; j <= cj + 1; ++j)
+        for (long i = ci - 1; i <= ci + 1; ++i) {
+          const auto it = near.find(pack(i, j));
+          if (it != near.end())
+            for (size_t q : it->second)
+              if (pos[q].open && paths[pos[q].path].closed && dist(pos[q].c, c) <= 2 * r &&
+                  judge(q, entrySlack) == Verdict::Ok)
+                return true;
+        }
+      return false;
+    };
     // From a plunge just made, on along its path while the plunges keep the
-    // limit; a thin plunge only where the next one needs it.
+    // limit; a thin plunge only where the next one needs it. A walk stops
+    // before a position the contour cuts anyway (until the contour is cut
+    // there, when it is skipped); a connector (a walk entered at such a
+    // position) stops as soon as a contour beside it can be entered.
     auto walkOn = [&](size_t k) {
       std::optional<size_t> ahead = along(k, +1);
       const int dir = ahead && pos[*ahead].open ? +1 : -1;
+      const bool connector = pos[k].covered;
       size_t last = k;
       for (std::optional<size_t> q = along(k, dir); q && pos[*q].open; q = along(*q, dir)) {
         progress_.tick();
+        if (connector && contourOpens(pos[last].c)) break;
+        if (!connector && pos[*q].covered && judge(*q, entrySlack) != Verdict::Skip) break;
         zOf(pos[*q]);
         const bool onStep = dist(pos[*q].c, pos[last].c) <= step + 1e-6 && pos[*q].z && *pos[*q].z >= *pos[last].z - 1e-9;
         const Verdict v = judge(*q, onStep ? stepSlack : entrySlack);
@@ -669,24 +735,27 @@ class Grower {
     };
     std::vector<size_t> open(pos.size());
     for (size_t k = 0; k < pos.size(); ++k) open[k] = k;
-    std::vector<std::pair<std::pair<bool, double>, size_t>> order;
+    std::vector<std::pair<std::tuple<bool, bool, double>, size_t>> order;
     std::optional<size_t> piece;  // where the last plunge was
     while (targets.left() > 0) {
       progress_.tick();
       // The piece of the region the tool is in first, then nearest first (ties
       // by index, so deterministic), the contour's positions kRowDetour radii
-      // nearer than the rows'.
+      // nearer than the rows'. Row positions the contour cuts anyway come
+      // last, after a start: a start is one plunge, a row between two
+      // contours a dozen.
       open.erase(std::remove_if(open.begin(), open.end(), [&](size_t k) { return !pos[k].open; }), open.end());
       if (open.empty()) break;
       order.clear();
       for (size_t k : open) {
         const Vec2 d = pos[k].c - at;
         const double detour = paths[pos[k].path].closed ? 0.0 : kRowDetour * r;
-        order.push_back({{piece && paths[pos[k].path].piece != *piece, norm(d) + detour}, k});
+        order.push_back({{pos[k].covered, piece && paths[pos[k].path].piece != *piece, norm(d) + detour}, k});
       }
       std::sort(order.begin(), order.end());
       std::optional<size_t> entry, thin, start;
       for (const auto& [unused, k] : order) {
+        if (pos[k].covered && (thin || start)) break;
         const Verdict v = judge(k, entrySlack);
         if (v == Verdict::Skip) {
           pos[k].open = false;

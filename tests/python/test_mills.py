@@ -2,6 +2,7 @@
 through the G-code checker (machine_check.py: a simulated stock independent of
 the planner) on random pockets and the bundled examples."""
 import json
+import math
 import os
 import subprocess
 
@@ -150,6 +151,40 @@ def test_sculptured_limited_plans_lead_out_raised_out_of_the_steps(cli, tmp_path
     # Uneven depths leave steps: what the checker finds over the limit, the plan
     # counts and warns of too (a raster's difference aside).
     assert len(report["over_engaged"]) <= stats["over_engaged"] + 1, (report["over_engaged"], stats["over_engaged"])
+
+
+def ring_pocket():
+    """A round pocket 120 mm across around a round island 50 mm across, over a
+    wavy floor (like the FreeCAD demo's): the wall's contour and the island's
+    lie less than two swaths of the 20 mm tool apart."""
+    def circle(r, n):
+        return [[r * math.cos(2 * math.pi * i / n), r * math.sin(2 * math.pi * i / n)] for i in range(n)]
+    return {"version": 1, "boundary": circle(60.0, 120), "islands": [circle(25.0, 60)[::-1]],
+            "tools": [{"diameter": 20.0, "id": 1}, {"diameter": 12.0, "id": 2}, {"diameter": 6.0, "id": 3}],
+            "top_z": 0.0, "safe_z": 5.0, "floor": {"expression": "-25 + 2*sin(x/15)*cos(y/15)"},
+            "allowance": {"radial": 0.5, "floor": 0.3}, "max_wall_stock": 1.0, "max_floor_stock": 1.0}
+
+
+@pytest.mark.parametrize("kind", ["half", "quarter"])
+def test_rows_between_the_wall_and_an_island_are_not_cut_twice(cli, tmp_path, kind):
+    """The contours of the wall and of the island cut the whole ring between
+    them; a row there would cut it again. Walks along the contours stop at
+    deeper neighbours over a wavy floor, and rows were entered first: 1.24 x
+    the bound at 0.25 D. Rows are now left out where the contours cut, within
+    1.2 x, and the plan still passes the checker."""
+    free, _ = post(cli, ring_pocket(), tmp_path)
+    data = ring_pocket()
+    for t in data["tools"]:  # the limit alone (mill() adds a min_engagement at 0.25 D)
+        t["max_engagement"] = FRACTION[kind] * t["diameter"]
+    plan, gcode = post(cli, data, tmp_path)
+    stats = plan["stats"]
+    bound = row_bound(data, free, stats, kind)
+    assert stats["plunge_count"] <= 1.2 * bound, (stats["plunge_count"], bound)
+    report = check_program(data, data["tools"], gcode)
+    for key in ("gouges", "rapid_through_stock", "lead_out_into_material", "too_deep"):
+        assert not report[key], (key, report[key][:3])
+    assert len(report["over_engaged"]) <= stats["over_engaged"] + 1, (report["over_engaged"], stats["over_engaged"])
+    assert_no_gouge(data, plan)
 
 
 def test_lead_out_zero_retracts_straight_up(cli, tmp_path):
