@@ -7,7 +7,8 @@
 // from the one before it cuts a crescent no thicker than the step (every point
 // of its disk lies within the step of the other disk). The planner lays the
 // rows over the tool's centre region (growthPaths: its contour first, then
-// rows along its long axis) and enters each path next to material already
+// rows along its long axis; row positions the contours cut anyway, between a
+// wall and an island, come last) and enters each path next to material already
 // cut, so positions and order come together; the plunges that clear the tool's
 // own targets (its share of the packing/covering plan) are kept. What the
 // paths miss is grown ring by ring: a plunge centred in the region cut so far
