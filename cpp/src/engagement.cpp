@@ -61,6 +61,21 @@ long long pack(long i, long j) {
   return static_cast<long long>(hi ^ (static_cast<unsigned long long>(j) & 0xffffffffULL));
 }
 
+// Items of a grid keyed by pack(cell indices), cells `cell` wide: whether f
+// holds for any in the 3 x 3 cells around c (each visited until one does).
+template <class T, class F>
+bool anyNear(const std::unordered_map<long long, std::vector<T>>& grid, Vec2 c, double cell, F f) {
+  const long ci = static_cast<long>(std::floor(c.x / cell)), cj = static_cast<long>(std::floor(c.y / cell));
+  for (long j = cj - 1; j <= cj + 1; ++j)
+    for (long i = ci - 1; i <= ci + 1; ++i) {
+      const auto it = grid.find(pack(i, j));
+      if (it != grid.end())
+        for (const T& item : it->second)
+          if (f(item)) return true;
+    }
+  return false;
+}
+
 // The material a tool must clear: points sampled on the height field's raster
 // inside its planned disks, each with the height the planned plunges cut it to.
 class Targets {
@@ -399,17 +414,7 @@ std::vector<std::vector<bool>> coveredByContour(const std::vector<GrowthPath>& p
   for (const GrowthPath& p : paths)
     if (p.closed)
       for (Vec2 c : p.at) contour[key(c)].push_back(c);
-  auto cut = [&](Vec2 q) {
-    const long ci = static_cast<long>(std::floor(q.x / cell)), cj = static_cast<long>(std::floor(q.y / cell));
-    for (long j = cj - 1; j <= cj + 1; ++j)
-      for (long i = ci - 1; i <= ci + 1; ++i) {
-        const auto it = contour.find(pack(i, j));
-        if (it != contour.end())
-          for (Vec2 c : it->second)
-            if (dist(c, q) <= r) return true;
-      }
-    return false;
-  };
+  auto cut = [&](Vec2 q) { return anyNear(contour, q, cell, [&](Vec2 c) { return dist(c, q) <= r; }); };
   auto covered = [&](Vec2 c) {
     if (!cut(c)) return false;
     for (int ring = 1; ring <= 4; ++ring)
@@ -668,14 +673,10 @@ class Grower {
       pos[k].open = false;
       place(tool, cutter, pos[k].c, *pos[k].z, targets, start);
       at = pos[k].c;
-      const long ci = static_cast<long>(std::floor(at.x / cell)), cj = static_cast<long>(std::floor(at.y / cell));
-      for (long j = cj - 1; j <= cj + 1; ++j)
-        for (long i = ci - 1; i <= ci + 1; ++i) {
-          auto it = near.find(pack(i, j));
-          if (it == near.end()) continue;
-          for (size_t q : it->second)
-            if (pos[q].open && !pos[q].skip) pos[q].known = false;
-        }
+      anyNear(near, at, cell, [&](size_t q) {
+        if (pos[q].open && !pos[q].skip) pos[q].known = false;
+        return false;  // every one
+      });
     };
     // The next position along a path (dir +1 or -1), or none.
     auto along = [&](size_t k, int dir) -> std::optional<size_t> {
@@ -686,17 +687,10 @@ class Grower {
     };
     // Can a contour's position near c be entered now?
     auto contourOpens = [&](Vec2 c) {
-      const long ci = static_cast<long>(std::floor(c.x / cell)), cj = static_cast<long>(std::floor(c.y / cell));
-      for (long j = cj - 1; j <= cj + 1; ++j)
-        for (long i = ci - 1; i <= ci + 1; ++i) {
-          const auto it = near.find(pack(i, j));
-          if (it != near.end())
-            for (size_t q : it->second)
-              if (pos[q].open && paths[pos[q].path].closed && dist(pos[q].c, c) <= 2 * r &&
-                  judge(q, entrySlack) == Verdict::Ok)
-                return true;
-        }
-      return false;
+      return anyNear(near, c, cell, [&](size_t q) {
+        return pos[q].open && paths[pos[q].path].closed && dist(pos[q].c, c) <= 2 * r &&
+               judge(q, entrySlack) == Verdict::Ok;
+      });
     };
     // From a plunge just made, on along its path while the plunges keep the
     // limit; a thin plunge only where the next one needs it. A walk stops
