@@ -168,6 +168,10 @@ def test_plunge_mill_from_the_library(result):
     assert spec["center_cutting"] is False
     assert abs(mill["solid"][0] - 25) < 0.1 and abs(mill["solid"][1] - 150) < 0.1  # to scale
     assert mill["editor"]
+    # FreeCAD 0.20's own editor bug (gui_smoke.UPSTREAM_EDITOR_BUG), the only
+    # report view error set aside, costs one more try and no other.
+    if "editor_attempts" in mill:
+        assert mill["editor_attempts"] == 1 + len(result["report_known_upstream"]), result["report_known_upstream"]
 
 
 def test_screenshots(result, out):
