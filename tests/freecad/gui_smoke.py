@@ -153,8 +153,9 @@ def click(window, at):
 
 
 # FreeCAD 0.20's tool bit editor (PathToolBitEdit.ToolBitEditor) now and then
-# finds the widget it has just loaded from its own .ui file deleted, before
-# this addon's code runs: its traceback ends in this, from that file.
+# finds a widget it has just loaded from its own .ui file already deleted, in
+# its constructor (FreeCAD's code only): its traceback
+# ends in this, from that file.
 UPSTREAM_EDITOR_BUG = ("PathToolBitEdit.py", "self.form.bitParams.layout()",
                        "Internal C++ object (PySide2.QtWidgets.QWidget) already deleted.")
 
@@ -571,8 +572,8 @@ def plunge_mill_bit():
                 for b in FreeCADGui.getMainWindow().findChildren(QtGui.QPushButton))
         # The editor builds its shape first: on a loaded machine that takes
         # seconds; the wait ends when it is open. FreeCAD 0.20's editor now and
-        # then fails in its own constructor (UPSTREAM_EDITOR_BUG, whatever the
-        # bit): the user opens it again, and so does this test, once.
+        # then fails in its own constructor (UPSTREAM_EDITOR_BUG): the user
+        # opens it again, and so does this test, once.
         attempts = 0
         while attempts < 2 and not editor_open():
             attempts += 1
