@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <tuple>
@@ -275,7 +277,7 @@ std::vector<GrowthPath> rowsAt(const Polygons& centres, double th, double step, 
       // On a lattice `step` apart, shifted half a step on every other row,
       // from just inside one end to the other end.
       const double shift = (k % 2) * 0.5 * step, a = xs[i], b = xs[i + 1];
-      GrowthPath path{{}, false};
+      GrowthPath path;
       path.at.push_back(fromRow({a, y}));
       for (double x = (std::floor((a - shift) / step) + 1) * step + shift; x < b - 1e-6; x += step)
         if (x > a + 1e-6) path.at.push_back(fromRow({x, y}));
@@ -286,7 +288,84 @@ std::vector<GrowthPath> rowsAt(const Polygons& centres, double th, double step, 
   return out;
 }
 
+// Positions along a loop at most `maxStep` apart, on every corner (a turn of
+// over 20 degrees: a corner's plunge reaches into the pocket's corner, none
+// between would), evenly from one corner to the next.
+std::vector<Vec2> alongLoop(const Loop& l, double maxStep) {
+  const size_t m = l.size();
+  std::vector<size_t> corners;
+  for (size_t i = 0; i < m; ++i) {
+    const Vec2 a = l[(i + m - 1) % m], b = l[i], c = l[(i + 1) % m];
+    const double n1 = dist(a, b), n2 = dist(b, c);
+    if (n1 > 0 && n2 > 0 && dot(b - a, c - b) < std::cos(kPi / 9) * n1 * n2) corners.push_back(i);
+  }
+  if (corners.empty()) corners.push_back(0);
+  std::vector<Vec2> out;
+  for (size_t k = 0; k < corners.size(); ++k) {
+    // From this corner up to the next one, evenly.
+    const size_t from = corners[k], to = corners[(k + 1) % corners.size()];
+    const size_t span = (to + m - from) % m == 0 ? m : (to + m - from) % m;
+    double length = 0;
+    for (size_t s = 0; s < span; ++s) length += dist(l[(from + s) % m], l[(from + s + 1) % m]);
+    const int n = std::max(1, static_cast<int>(std::ceil(length / maxStep - 1e-9)));
+    double walked = 0;
+    int placed = 0;
+    for (size_t s = 0; s < span && placed < n; ++s) {
+      const Vec2 a = l[(from + s) % m], b = l[(from + s + 1) % m];
+      const double len = dist(a, b);
+      for (double next = length * placed / n; next <= walked + len && placed < n; next = length * ++placed / n)
+        out.push_back(len > 0 ? a + (b - a) * ((next - walked) / len) : a);
+      walked += len;
+    }
+  }
+  return out;
+}
+
+// Offsets of the region's contour, `spacing` apart inwards, positions at most
+// `step` apart along each loop (alongLoop); where the next offset is empty,
+// one more halfway. `outer`: the contour's positions.
+std::vector<GrowthPath> offsetsAt(const Polygons& centres, double step, double spacing, std::vector<Vec2> outer) {
+  std::vector<GrowthPath> out;
+  auto add = [&](const Polygons& loops) {
+    std::vector<Vec2> next;
+    for (const Loop& l : loops) {
+      GrowthPath path;
+      path.closed = true;
+      path.at = alongLoop(l, step);
+      // A bridge from the loop outside to this loop's first position: each
+      // loop is entered from cut material, like a row from the contour.
+      Vec2 from = outer.front();
+      for (Vec2 o : outer)
+        if (dist(o, path.at.front()) < dist(from, path.at.front())) from = o;
+      GrowthPath bridge;
+      const Vec2 to = path.at.front();
+      const int n = static_cast<int>(std::ceil(dist(from, to) / step - 1e-9));
+      for (int i = 1; i < n; ++i) bridge.at.push_back(from + (to - from) * (static_cast<double>(i) / n));
+      next.insert(next.end(), path.at.begin(), path.at.end());
+      out.push_back(std::move(path));
+      if (!bridge.at.empty()) out.push_back(std::move(bridge));
+    }
+    outer = std::move(next);
+  };
+  for (int k = 1; !outer.empty(); ++k) {
+    const Polygons loops = poly::offset(centres, -k * spacing);
+    if (loops.empty()) {  // one more halfway, or the middle stays out of reach
+      add(poly::offset(centres, -(k - 0.5) * spacing));
+      break;
+    }
+    add(loops);
+  }
+  return out;
+}
+
 }  // namespace
+
+double loopSpacing(double r, double step) {
+  // Side by side, not staggered: the closest the scallops come is midway
+  // between two plunges of a loop.
+  const double h = std::min(step, 2 * r);
+  return 2 * std::sqrt(r * r - 0.25 * h * h);
+}
 
 double rowSpacing(double r, double step) {
   // Staggered rows (each row's plunges between the last row's): the scallops
@@ -296,9 +375,10 @@ double rowSpacing(double r, double step) {
   return std::min(r + std::sqrt(r * r - 0.25 * h * h), 2 * std::sqrt(r * r - h * h / 16));
 }
 
-std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double wallStep, double rowSpacing) {
+std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double wallStep, double spacing,
+                                    GrowthPattern pattern) {
   std::vector<GrowthPath> out;
-  if (centres.empty() || !(step > 0) || !(rowSpacing > 0)) return out;
+  if (centres.empty() || !(step > 0) || !(spacing > 0)) return out;
   // Rows along the long axis; parallel to the longest wall instead where that
   // is within 10 degrees of it (a machinist's rows run along the walls).
   double th = longAxis(centres), longest = 0;
@@ -321,35 +401,16 @@ std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double
     // along it, on every corner (a corner's plunge reaches into the pocket's
     // corner; none between would).
     for (const Loop& l : region) {
-      const size_t m = l.size();
-      std::vector<size_t> corners;
-      for (size_t i = 0; i < m; ++i) {
-        const Vec2 a = l[(i + m - 1) % m], b = l[i], c = l[(i + 1) % m];
-        const double n1 = dist(a, b), n2 = dist(b, c);
-        if (n1 > 0 && n2 > 0 && dot(b - a, c - b) < std::cos(kPi / 9) * n1 * n2) corners.push_back(i);
-      }
-      if (corners.empty()) corners.push_back(0);
-      GrowthPath path{{}, true};
-      for (size_t k = 0; k < corners.size(); ++k) {
-        // From this corner up to the next one, evenly.
-        const size_t from = corners[k], to = corners[(k + 1) % corners.size()];
-        const size_t span = (to + m - from) % m == 0 ? m : (to + m - from) % m;
-        double length = 0;
-        for (size_t s = 0; s < span; ++s) length += dist(l[(from + s) % m], l[(from + s + 1) % m]);
-        const int n = std::max(1, static_cast<int>(std::ceil(length / wallStep - 1e-9)));
-        double walked = 0;
-        int placed = 0;
-        for (size_t s = 0; s < span && placed < n; ++s) {
-          const Vec2 a = l[(from + s) % m], b = l[(from + s + 1) % m];
-          const double len = dist(a, b);
-          for (double next = length * placed / n; next <= walked + len && placed < n; next = length * ++placed / n)
-            path.at.push_back(len > 0 ? a + (b - a) * ((next - walked) / len) : a);
-          walked += len;
-        }
-      }
+      GrowthPath path;
+      path.closed = path.contour = true;
+      path.at = alongLoop(l, wallStep);
       out.push_back(std::move(path));
     }
-    for (GrowthPath& p : rowsAt(region, th, step, rowSpacing)) out.push_back(std::move(p));
+    std::vector<Vec2> contour;
+    for (size_t k = first; k < out.size(); ++k) contour.insert(contour.end(), out[k].at.begin(), out[k].at.end());
+    for (GrowthPath& p : pattern == GrowthPattern::Offsets ? offsetsAt(region, step, spacing, contour)
+                                                            : rowsAt(region, th, step, spacing))
+      out.push_back(std::move(p));
     for (size_t k = first; k < out.size(); ++k) out[k].piece = piece;
   }
   return out;
@@ -412,7 +473,7 @@ std::vector<std::vector<bool>> coveredByContour(const std::vector<GrowthPath>& p
   };
   std::unordered_map<long long, std::vector<Vec2>> contour;
   for (const GrowthPath& p : paths)
-    if (p.closed)
+    if (p.contour)
       for (Vec2 c : p.at) contour[key(c)].push_back(c);
   auto cut = [&](Vec2 q) { return anyNear(contour, q, cell, [&](Vec2 c) { return dist(c, q) <= r; }); };
   auto covered = [&](Vec2 c) {
@@ -427,7 +488,7 @@ std::vector<std::vector<bool>> coveredByContour(const std::vector<GrowthPath>& p
   std::vector<std::vector<bool>> out;
   for (const GrowthPath& p : paths) {
     out.emplace_back(p.at.size(), false);
-    if (!p.closed)
+    if (!p.contour)
       for (size_t i = 0; i < p.at.size(); ++i) out.back()[i] = covered(p.at[i]);
   }
   return out;
@@ -476,8 +537,44 @@ class Grower {
     return z;
   }
 
-  // Grows the tool's cut over its targets (the plunges the plan gave it).
+  // Grows the tool's cut over its targets along the pattern asked for; with
+  // Auto twice, along rows and along offsets of the contour, keeping the one
+  // with fewer plunges, a start into solid counted twice (it drills the whole
+  // disk and cannot lead out), rows on a tie. Rows suit long straight
+  // pockets, offsets rings and narrow necks. The two run at once, one per
+  // core, the second on its own copies of the stock and of the floor (whose
+  // evaluation is not thread-safe, floor.hpp).
   void grow(const Tool& tool, const std::vector<Plunge>& planned) {
+    if (in_.pattern != GrowthPattern::Auto) return grow(tool, planned, in_.pattern);
+    settle();
+    const size_t begin = order_.size();
+    HeightField otherStock = stock_;
+    const std::unique_ptr<FloorSurface> otherFloor = depths_.floor().clone();
+    const DepthSolver otherDepths(*otherFloor, depths_);
+    Grower other(in_, region_, otherDepths, otherStock);
+    other.cleared_ = cleared_;
+    other.order_ = order_;
+    other.holes_ = holes_;
+    std::future<void> trial =
+        std::async(std::launch::async, [&] { other.grow(tool, planned, GrowthPattern::Offsets); });
+    grow(tool, planned, GrowthPattern::Rows);
+    trial.get();
+    auto cost = [begin](const Grower& g) {
+      size_t n = g.order_.size() + g.holes_.size();
+      for (size_t k = begin; k < g.order_.size(); ++k) n += g.order_[k].start;
+      return n;
+    };
+    if (cost(other) < cost(*this)) {
+      stock_ = std::move(otherStock);
+      cleared_ = std::move(other.cleared_);
+      newDisks_ = std::move(other.newDisks_);
+      order_ = std::move(other.order_);
+      holes_ = std::move(other.holes_);
+    }
+  }
+
+  // Grows the tool's cut over its targets (the plunges the plan gave it).
+  void grow(const Tool& tool, const std::vector<Plunge>& planned, GrowthPattern pattern) {
     settle();
     const size_t begin = order_.size();
     const Cutter cutter = cutterOf(tool);
@@ -504,7 +601,7 @@ class Grower {
     std::vector<bool> triedStart(planned.size(), false);
     Vec2 at = order_.empty() ? (in_.start ? *in_.start : region_.loops()[0].front())
                              : Vec2{order_.back().x, order_.back().y};
-    growAlongPaths(tool, cutter, centres, targets, minGain, at);
+    growAlongPaths(tool, cutter, centres, pattern, targets, minGain, at);
     int stalls = 0;  // rounds that cut no target point (a guard: each round should)
     while (targets.left() > 0 && stalls < kStallRounds) {
       progress_.tick();
@@ -589,8 +686,8 @@ class Grower {
   // to cut material, nearest first, and walked while its plunges keep the
   // limit; where nothing can be entered, a start. Leaves to the rings what the
   // paths cannot reach.
-  void growAlongPaths(const Tool& tool, const Cutter& cutter, const Polygons& centres, Targets& targets,
-                      int minGain, Vec2& at) {
+  void growAlongPaths(const Tool& tool, const Cutter& cutter, const Polygons& centres, GrowthPattern pattern,
+                      Targets& targets, int minGain, Vec2& at) {
     const double r = cutter.radius, e = std::min(engagementLimit(tool), 2 * r);
     const double coreR = coreRadius(tool);
     const double h = stock_.spacing();
@@ -606,10 +703,11 @@ class Grower {
     double wallStep = step;
     const double scallop = kContourScallop * in_.maxWallStock;
     if (scallop > 0 && scallop < r) wallStep = std::min(step, 2 * std::sqrt(r * r - (r - scallop) * (r - scallop)));
-    std::vector<GrowthPath> paths = growthPaths(centres, step, wallStep, rowSpacing(r, step) - h);
+    const double spacing = (pattern == GrowthPattern::Offsets ? loopSpacing(r, step) : rowSpacing(r, step)) - h;
+    std::vector<GrowthPath> paths = growthPaths(centres, step, wallStep, spacing, pattern);
     if (scallop > 0)
       for (GrowthPath& p : paths)
-        if (p.closed) refineContour(p, centres, region_, r, in_.radialAllowance, kWallBand * in_.maxWallStock);
+        if (p.contour) refineContour(p, centres, region_, r, in_.radialAllowance, kWallBand * in_.maxWallStock);
     const std::vector<std::vector<bool>> covered = coveredByContour(paths, r);
     enum class Verdict { Skip, Blocked, Solid, Thin, Ok };
     struct Pos {
@@ -688,7 +786,7 @@ class Grower {
     // Can a contour's position near c be entered now?
     auto contourOpens = [&](Vec2 c) {
       return anyNear(near, c, cell, [&](size_t q) {
-        return pos[q].open && paths[pos[q].path].closed && dist(pos[q].c, c) <= 2 * r &&
+        return pos[q].open && paths[pos[q].path].contour && dist(pos[q].c, c) <= 2 * r &&
                judge(q, entrySlack) == Verdict::Ok;
       });
     };
@@ -743,7 +841,7 @@ class Grower {
       order.clear();
       for (size_t k : open) {
         const Vec2 d = pos[k].c - at;
-        const double detour = paths[pos[k].path].closed ? 0.0 : kRowDetour * r;
+        const double detour = paths[pos[k].path].contour ? 0.0 : kRowDetour * r;
         order.push_back({{pos[k].covered, piece && paths[pos[k].path].piece != *piece, norm(d) + detour}, k});
       }
       std::sort(order.begin(), order.end());

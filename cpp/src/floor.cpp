@@ -48,6 +48,7 @@ class FlatFloor : public FloorSurface {
   double height(Vec2) const override { return z_; }
   std::vector<Vec3> peaks(Vec2 lo, Vec2, double) const override { return {{lo.x, lo.y, z_}}; }
   bool isFlat() const override { return true; }
+  std::unique_ptr<FloorSurface> clone() const override { return std::make_unique<FlatFloor>(z_); }
 
  private:
   double z_;
@@ -59,7 +60,7 @@ double naturalLog(double v) { return std::log(v); }
 
 class ExpressionFloor : public FloorSurface {
  public:
-  explicit ExpressionFloor(const std::string& expr) {
+  explicit ExpressionFloor(const std::string& expr) : expr_(expr) {
     try {
       parser_.DefineVar("x", &x_);
       parser_.DefineVar("y", &y_);
@@ -70,6 +71,7 @@ class ExpressionFloor : public FloorSurface {
       throw Error("floor.expression: " + e.GetMsg() + " in \"" + expr + "\"");
     }
   }
+  std::unique_ptr<FloorSurface> clone() const override { return std::make_unique<ExpressionFloor>(expr_); }
   double height(Vec2 p) const override {
     x_ = p.x;
     y_ = p.y;
@@ -90,6 +92,7 @@ class ExpressionFloor : public FloorSurface {
   }
 
  private:
+  std::string expr_;
   mutable double x_ = 0, y_ = 0;
   mu::Parser parser_;
 };
@@ -98,6 +101,9 @@ class ExpressionFloor : public FloorSurface {
 
 class BrepFloor : public FloorSurface {
  public:
+  // A clone shares the (read-only) shape and builds its own adaptors, whose
+  // B-spline caches are what evaluation changes.
+  std::unique_ptr<FloorSurface> clone() const override { return std::make_unique<BrepFloor>(shape_); }
   explicit BrepFloor(const TopoDS_Shape& shape) : shape_(shape) {
     for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) {
       auto f = std::make_unique<Face>();

@@ -72,6 +72,12 @@ PackingOrder packingOrderFromName(const std::string& name) {
       {{"auto", PackingOrder::Auto}, {"hole_degree", PackingOrder::HoleDegree}, {"lattice", PackingOrder::Lattice}});
 }
 
+GrowthPattern growthPatternFromName(const std::string& name) {
+  return fromName<GrowthPattern>(
+      name, "growth_pattern", "pattern",
+      {{"auto", GrowthPattern::Auto}, {"rows", GrowthPattern::Rows}, {"offsets", GrowthPattern::Offsets}});
+}
+
 TourMethod tourMethodFromName(const std::string& name) {
   return fromName<TourMethod>(name, "sequencing", "method",
                               {{"local_search", TourMethod::LocalSearch}, {"annealing", TourMethod::Annealing}});
@@ -239,6 +245,8 @@ void readScalars(const json& j, PlanInput& in) {
   if (j.contains("strategy")) in.strategy = strategyFromName(stringOf(j["strategy"], "strategy"));
   if (j.contains("packing_order"))
     in.packingOrder = packingOrderFromName(stringOf(j["packing_order"], "packing_order"));
+  if (j.contains("growth_pattern"))
+    in.growthPattern = growthPatternFromName(stringOf(j["growth_pattern"], "growth_pattern"));
   if (j.contains("sequencing")) in.sequencing = tourMethodFromName(stringOf(j["sequencing"], "sequencing"));
 }
 
@@ -265,7 +273,7 @@ PlanInput planInputFromJson(const std::string& text) {
   if (!j.is_object()) throw Error("input: expected a JSON object");
   onlyKeys(j,
            {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",
-            "min_coverage", "contact_ratio", "packing_order", "sequencing", "start", "tool_library", "selection",
+            "min_coverage", "contact_ratio", "packing_order", "growth_pattern", "sequencing", "start", "tool_library", "selection",
             "time_model", "grid", "max_wall_stock", "max_floor_stock", "lead_out", "stock_aware_heights",
             "rapid_clearance", "max_plunges", "final_depth"},
            "input: ");

@@ -372,6 +372,7 @@ EngagementOptions engagementOptions(const PlanInput& in, const Progress& progres
   o.maxWallStock = in.maxWallStock;
   o.maxFloorStock = in.maxFloorStock;
   o.start = in.start;
+  o.pattern = in.growthPattern;
   o.progress = progress;
   return o;
 }

@@ -80,16 +80,19 @@ TEST(Json, OptionsAreParsedByName) {
   json j = base();
   j["strategy"] = "grid";
   j["packing_order"] = "lattice";
+  j["growth_pattern"] = "offsets";
   j["sequencing"] = "annealing";
   j["grid"] = {{"pattern", "square"}, {"step", 0.5}};
   const PlanInput in = planInputFromJson(j.dump());
   EXPECT_EQ(in.strategy, Strategy::Grid);
   EXPECT_EQ(in.packingOrder, PackingOrder::Lattice);
+  EXPECT_EQ(in.growthPattern, GrowthPattern::Offsets);
   EXPECT_EQ(in.sequencing, TourMethod::Annealing);
   EXPECT_EQ(in.gridPattern, GridPattern::Square);
   const PlanInput defaults = planInputFromJson(withChange("/strategy", json::value_t::discarded));
   EXPECT_EQ(defaults.strategy, Strategy::Packing);
   EXPECT_EQ(defaults.packingOrder, PackingOrder::Auto);
+  EXPECT_EQ(defaults.growthPattern, GrowthPattern::Auto);
   EXPECT_EQ(defaults.sequencing, TourMethod::LocalSearch);
   EXPECT_EQ(defaults.gridPattern, GridPattern::Honeycomb);
   // Unknown names: the key, the name and every accepted one.
@@ -97,6 +100,8 @@ TEST(Json, OptionsAreParsedByName) {
             "strategy: unknown strategy 'spiral' (use \"packing\" or \"grid\")");
   EXPECT_EQ(parseError(withChange("/packing_order", "random")),
             "packing_order: unknown order 'random' (use \"auto\", \"hole_degree\" or \"lattice\")");
+  EXPECT_EQ(parseError(withChange("/growth_pattern", "spiral")),
+            "growth_pattern: unknown pattern 'spiral' (use \"auto\", \"rows\" or \"offsets\")");
   EXPECT_EQ(parseError(withChange("/sequencing", "genetic")),
             "sequencing: unknown method 'genetic' (use \"local_search\" or \"annealing\")");
   EXPECT_EQ(parseError(withChange("/grid", {{"pattern", "hexagon"}})),

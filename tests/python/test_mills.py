@@ -248,3 +248,32 @@ def test_limited_plans_stay_near_the_row_bound_travel_little_and_lead_out(cli, t
         assert with_lead_out >= 0.9 * len(plunges), (kind, with_lead_out, len(plunges))
         # The others are counted by reason.
         assert stats["no_lead_out_material"] + stats["no_lead_out_walls"] == len(plunges) - with_lead_out
+
+
+def test_offsets_of_the_contour_where_they_cost_fewer_plunges(cli, tmp_path):
+    """A dumbbell's lobes are round: offsets of their contour follow them,
+    where rows cross them and end at the walls. With growth_pattern "auto" (the
+    default) each limited tool is grown both ways and keeps the cheaper; on the
+    neck shape at 0.25 D that is offsets: within 1.1 x the bound (1.17 x with
+    rows). A plan along offsets only passes the G-code checker too, and a
+    pattern the planner does not know is refused, naming the ones it does."""
+    data = json.load(open(os.path.join(SHAPES, "neck.json")))
+    free, _ = post(cli, data, tmp_path)
+    plans = {}
+    for pattern in ("rows", "offsets", "auto"):
+        limited = dict(mill(data, "quarter"), growth_pattern=pattern)
+        plans[pattern], gcode = post(cli, limited, tmp_path)
+        if pattern == "offsets":
+            report = check_program(limited, limited["tools"], gcode)
+            for key in ("gouges", "rapid_through_stock", "lead_out_into_material", "too_deep"):
+                assert not report[key], (key, report[key][:3])
+            assert_no_gouge(limited, plans[pattern])
+    count = {k: p["stats"]["plunge_count"] for k, p in plans.items()}
+    bound = row_bound(data, free, plans["auto"]["stats"], "quarter")
+    assert count["auto"] <= 1.1 * bound, (count, bound)
+    assert count["auto"] < count["rows"], count
+    assert plans["auto"]["stats"]["core_coverage"] > 0.9999
+    src = tmp_path / "bad.json"
+    src.write_text(json.dumps(dict(data, growth_pattern="spiral")))
+    run = subprocess.run([cli, "plan", str(src)], capture_output=True, text=True, timeout=60)
+    assert run.returncode == 2 and "growth_pattern: unknown pattern 'spiral'" in run.stderr, run.stderr

@@ -132,6 +132,7 @@ def mutations():
     case("negative seed", lambda d: d.update(seed=-1))
     case("strategy", lambda d: d.update(strategy="spiral"))
     case("packing order", lambda d: d.update(packing_order="random"))
+    case("growth pattern", lambda d: d.update(growth_pattern="spiral"))
     case("sequencing", lambda d: d.update(sequencing="greedy"))
     case("min coverage", lambda d: d.update(min_coverage=1.5))
     case("contact ratio", lambda d: d.update(contact_ratio=0.2))

@@ -24,6 +24,10 @@ class DepthSolver {
  public:
   // Finds the floor's peaks over [lo, hi], resolving features down to `spacing`.
   DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spacing);
+  // The same solver over another instance of the same floor (a clone, for
+  // another thread): the peaks are not searched again.
+  DepthSolver(const FloorSurface& floor, const DepthSolver& like)
+      : floor_(floor), spacing_(like.spacing_), peaks_(like.peaks_) {}
   // Tip height at which the cutter at `center` first touches the floor (no allowance).
   // Throws plunge::Error when no floor is under the cutter.
   double stopHeight(Vec2 center, const Cutter& cutter) const;

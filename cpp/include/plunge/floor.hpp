@@ -1,6 +1,6 @@
 // The pocket's floor as a height field z = f(x, y) (docs/plan-format.md,
 // "floor"): flat, an expression (muParser), or OpenCASCADE BREP faces.
-// Not thread-safe: evaluation caches state.
+// Not thread-safe: evaluation caches state; a clone evaluates on its own.
 #pragma once
 #include <memory>
 #include <string>
@@ -27,6 +27,8 @@ class FloorSurface {
   // feature the search must resolve.
   virtual std::vector<Vec3> peaks(Vec2 lo, Vec2 hi, double spacing) const = 0;
   virtual bool isFlat() const { return false; }
+  // The same floor with its own evaluation state, for another thread.
+  virtual std::unique_ptr<FloorSurface> clone() const = 0;
 };
 
 std::unique_ptr<FloorSurface> makeFlatFloor(double z);

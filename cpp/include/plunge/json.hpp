@@ -20,6 +20,7 @@ std::vector<Tool> toolsFromJson(const std::string& text);
 // key and the names it accepts.
 Strategy strategyFromName(const std::string& name);         // "strategy"
 PackingOrder packingOrderFromName(const std::string& name);  // "packing_order"
+GrowthPattern growthPatternFromName(const std::string& name);  // "growth_pattern"
 TourMethod tourMethodFromName(const std::string& name);      // "sequencing"
 GridPattern gridPatternFromName(const std::string& name);    // "grid": {"pattern"}
 

@@ -57,6 +57,15 @@ enum class PackingOrder {
   Auto,
 };
 
+// What an engagement-limited tool grows along inside its contour (engagement.hpp).
+enum class GrowthPattern {
+  Rows,     // rows along the region's long axis (what plunge-mill makers prescribe)
+  Offsets,  // offsets of the contour, rowSpacing apart, each entered by a bridge
+  // Both, keeping for each tool the one with fewer plunges (a start into solid
+  // counted twice): a choice of the growth (engagement.cpp).
+  Auto,
+};
+
 enum class TourMethod {
   LocalSearch,  // construction + 2-opt/Or-opt + iterated local search (default)
   Annealing,    // the thesis: simulated annealing on 2-opt moves
@@ -104,6 +113,8 @@ struct PlanInput {
   double contactRatio = 0.86;  // "contact_ratio": packing tangency radius / tool radius
   // "packing_order": "hole_degree" (the thesis), "lattice", or "auto": both, keep the better plan.
   PackingOrder packingOrder = PackingOrder::Auto;
+  // "growth_pattern": "rows", "offsets" or "auto": both, per tool the better.
+  GrowthPattern growthPattern = GrowthPattern::Auto;
   std::optional<Vec2> start;   // "start": where the machine starts (default: first boundary point)
   TourMethod sequencing = TourMethod::LocalSearch;  // "sequencing": or "annealing" (the thesis)
   // Where a relative floor.brep path starts: the input file's folder when read
