@@ -60,6 +60,7 @@ def test_tuples_and_defaults(plunge):
     ({"tools": "big"}, "tools"),
     ({"floor": {"z": "low"}}, "floor.z"),
     ({"floor": {"z": -5}, "strategy": 3}, "strategy"),
+    ({"growth_pattern": "spiral"}, "growth_pattern: unknown pattern 'spiral'"),
     ({"extra": object()}, "unsupported value"),
     ({"islands": [[[300, 300], [310, 300], [305, 310]]]}, "outside the boundary"),
     ({"tools": [{"diameter": 0.001, "id": 1}]}, "is the diameter in mm?"),
