@@ -397,9 +397,7 @@ std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double
   for (size_t piece = 0; piece < pieces.size(); ++piece) {
     const size_t first = out.size();
     const Polygons& region = pieces[piece];
-    // The contour: every loop of the centre region, at most wallStep apart
-    // along it, on every corner (a corner's plunge reaches into the pocket's
-    // corner; none between would).
+    // The contour: every loop of the centre region, at most wallStep apart.
     for (const Loop& l : region) {
       GrowthPath path;
       path.closed = path.contour = true;

@@ -273,9 +273,9 @@ PlanInput planInputFromJson(const std::string& text) {
   if (!j.is_object()) throw Error("input: expected a JSON object");
   onlyKeys(j,
            {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",
-            "min_coverage", "contact_ratio", "packing_order", "growth_pattern", "sequencing", "start", "tool_library", "selection",
-            "time_model", "grid", "max_wall_stock", "max_floor_stock", "lead_out", "stock_aware_heights",
-            "rapid_clearance", "max_plunges", "final_depth"},
+            "min_coverage", "contact_ratio", "packing_order", "growth_pattern", "sequencing", "start",
+            "tool_library", "selection", "time_model", "grid", "max_wall_stock", "max_floor_stock", "lead_out",
+            "stock_aware_heights", "rapid_clearance", "max_plunges", "final_depth"},
            "input: ");
   PlanInput in;
   if (j.contains("version") && !(j["version"].is_number_integer() && j["version"].get<long long>() == 1))

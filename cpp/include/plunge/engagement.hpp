@@ -45,8 +45,8 @@ struct GrowthPath {
 };
 // Inside the contour, `pattern`: rows `spacing` apart, or offsets of the
 // contour `spacing` apart (loops, each with a bridge from the loop outside it
-// as a row meets the contour, and a spur out of each sharp corner). Auto is
-// taken as rows here; the growth tries both.
+// as a row meets the contour). Auto is taken as rows here; the growth tries
+// both.
 std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double wallStep, double spacing,
                                     GrowthPattern pattern = GrowthPattern::Rows);
 // How far apart rows of plunges of radius r, `step` apart along each row and

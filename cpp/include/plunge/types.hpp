@@ -60,7 +60,7 @@ enum class PackingOrder {
 // What an engagement-limited tool grows along inside its contour (engagement.hpp).
 enum class GrowthPattern {
   Rows,     // rows along the region's long axis (what plunge-mill makers prescribe)
-  Offsets,  // offsets of the contour, rowSpacing apart, each entered by a bridge
+  Offsets,  // offsets of the contour, loopSpacing apart, each entered by a bridge
   // Both, keeping for each tool the one with fewer plunges (a start into solid
   // counted twice): a choice of the growth (engagement.cpp).
   Auto,
