@@ -24,6 +24,19 @@ translate = FreeCAD.Qt.translate
 PANEL = os.path.join(ADDON, "resources", "panels", "PlungeRoughEdit.ui")
 
 
+class SpinBox(PathGui.QuantitySpinBox):
+    """FreeCAD's QuantitySpinBox helper whose focus filter only looks at events.
+    With PySide2 (FreeCAD 0.20) a filter is now and then handed, instead of the
+    event, the stale wrapper of a deleted widget that lived at the event's
+    address; FreeCAD's own filter then raises "'QWidget' object has no
+    attribute 'type'" in the report view."""
+
+    def eventFilter(self, obj, event):
+        if isinstance(event, QtCore.QEvent):
+            return super().eventFilter(obj, event)
+        return False
+
+
 class TaskPanelOpPage(PathOpGui.TaskPanelPage):
     """The operation's own page: plungers, allowances, cycle, the plan's summary."""
 
@@ -32,14 +45,22 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
 
     def initPage(self, obj):
         self.spins = {
-            "RadialAllowance": PathGui.QuantitySpinBox(self.form.radialAllowance, obj, "RadialAllowance"),
-            "FloorAllowance": PathGui.QuantitySpinBox(self.form.floorAllowance, obj, "FloorAllowance"),
-            "ChordTolerance": PathGui.QuantitySpinBox(self.form.chordTolerance, obj, "ChordTolerance"),
-            "PeckDepth": PathGui.QuantitySpinBox(self.form.peckDepth, obj, "PeckDepth"),
-            "MaxWallStock": PathGui.QuantitySpinBox(self.form.maxWallStock, obj, "MaxWallStock"),
-            "MaxFloorStock": PathGui.QuantitySpinBox(self.form.maxFloorStock, obj, "MaxFloorStock"),
-            "LeadOut": PathGui.QuantitySpinBox(self.form.leadOut, obj, "LeadOut"),
+            "RadialAllowance": SpinBox(self.form.radialAllowance, obj, "RadialAllowance"),
+            "FloorAllowance": SpinBox(self.form.floorAllowance, obj, "FloorAllowance"),
+            "ChordTolerance": SpinBox(self.form.chordTolerance, obj, "ChordTolerance"),
+            "PeckDepth": SpinBox(self.form.peckDepth, obj, "PeckDepth"),
+            "MaxWallStock": SpinBox(self.form.maxWallStock, obj, "MaxWallStock"),
+            "MaxFloorStock": SpinBox(self.form.maxFloorStock, obj, "MaxFloorStock"),
+            "LeadOut": SpinBox(self.form.leadOut, obj, "LeadOut"),
         }
+
+    def cleanupPage(self, obj):
+        # The panel's widgets are deleted with it: no filter left on them and
+        # no wrapper of them kept alive by this page (a stale wrapper is what
+        # SpinBox guards against).
+        for spin in self.spins.values():
+            spin.widget.removeEventFilter(spin)
+        self.spins = {}
 
     def getTitle(self, obj):
         return translate("PlungeRough", "Plunge Rough")
