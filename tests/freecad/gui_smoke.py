@@ -310,6 +310,10 @@ def example_document():
     panel = panel_of(op)
     result["example"]["panel"] = panel is not None and panel.featurePages[-1].form.findChild(
         QtGui.QListWidget, "toolControllers") is not None
+    # No wrapper of a panel's widgets may outlive the panel: PySide hands a
+    # stale wrapper to whatever is made later at the same address (another
+    # widget, or an event given to a spin box's filter).
+    del panel
     click_task_button("Cancel")
     doc.recompute()
     result["example"]["after_cancel"] = {
@@ -477,7 +481,7 @@ def new_job():
     result["panel_width"] = [page.form.width(), page.form.minimumSizeHint().width(),
                              area.horizontalScrollBar().isVisible() if area is not None else None]
     screenshot("plunge_rough_panel.png")
-    del panel, page, items, area  # no wrapper of the panel's widgets may outlive it (see example_document)
+    del panel, page, items, area  # see example_document
     click_task_button("OK")
     doc.recompute()
     step("accepted")
@@ -503,6 +507,7 @@ def new_job():
         item = page.form.toolControllers.item(i)
         if "6 mm plunger" in item.text():
             item.setCheckState(QtCore.Qt.Unchecked)
+    del page, item  # see example_document
     wait(0.5)
     click_task_button("Cancel")
     doc.recompute()
