@@ -27,7 +27,8 @@ __doc__ = "Plunge roughing of pockets: circle packing, gap covering, sequencing,
 translate = FreeCAD.Qt.translate
 
 # Properties the job's setup sheet can carry defaults for.
-SETUP_PROPERTIES = ["IncludeFillets", "RadialAllowance", "FloorAllowance", "ChordTolerance", "UseCannedCycle", "PeckDepth",
+SETUP_PROPERTIES = ["IncludeFillets", "RadialAllowance", "FloorAllowance", "ChordTolerance", "UseCannedCycle",
+                    "PeckEnabled", "PeckDepth", "DwellTime",
                     "MinCoverage", "AutoSelectTools", "Strategy", "MaxWallStock", "MaxFloorStock", "LeadOut",
                     "StockAwareHeights", "MaxEngagement", "MinEngagement"]
 
@@ -43,13 +44,31 @@ def SetupProperties():
     return list(SETUP_PROPERTIES)
 
 
-def _report(obj, message):
-    """A problem the user must see: the report view, the op's summary, an empty
-    path, and companions that stay out of the program (no tool change without
-    plunges after it) until the operation plans again."""
-    FreeCAD.Console.PrintError("%s: %s\n" % (obj.Label, message))
+def _report(obj, message, error=True):
+    """A problem the user must see: the report view (an error; a warning for
+    what the user asked for, a cancel), the op's summary, an empty path, and
+    companions that stay out of the program (no tool change without plunges
+    after it) until the operation plans again."""
+    (FreeCAD.Console.PrintError if error else FreeCAD.Console.PrintWarning)("%s: %s\n" % (obj.Label, message))
     obj.Summary = message
     companions.deactivate(obj)
+
+
+class _PlanAgain:
+    """After a cancelled plan: once the recompute that ran it is over, marks
+    the operation to be recomputed, so that the next recompute plans it (a
+    touch inside execute() is cleared when it returns)."""
+
+    def __init__(self, obj):
+        self.obj = obj
+
+    def slotRecomputedDocument(self, doc):
+        FreeCAD.removeDocumentObserver(self)
+        try:
+            if doc == self.obj.Document:
+                self.obj.touch()
+        except (ReferenceError, RuntimeError):  # the operation was deleted meanwhile
+            pass
 
 
 PLUNGER_SHAPES = ("endmill", "ballend", "bullnose", "plungemill")  # plungemill: plunge_mill.py
@@ -125,7 +144,13 @@ class ObjectPlungeRough(PathOp.ObjectOp):
              "Largest deviation when free-form walls become polylines (added to the radial allowance)", 0.01)
         _add(obj, "App::PropertyBool", "UseCannedCycle", "Plunge with G81 (G83 when pecking) instead of G1 moves",
              False)
-        _add(obj, "App::PropertyLength", "PeckDepth", "Peck depth of the canned cycle, 0 = no pecking", 0.0)
+        _add(obj, "App::PropertyBool", "PeckEnabled",
+             "Peck the holes drilled into solid that are deeper than Peck Depth (G83 with canned cycles); crescent "
+             "plunges beside removed material are never pecked", True)
+        _add(obj, "App::PropertyLength", "PeckDepth",
+             "Depth of one peck into solid; 0 = three diameters of each plunger", 0.0)
+        _add(obj, "App::PropertyFloat", "DwellTime",
+             "Seconds at the bottom of each pecked hole (explicit moves only; 0: none)", 0.0)
         _add(obj, "App::PropertyLength", "MaxWallStock",
              "Thickest material the plunges may leave along walls and islands, beyond the radial allowance "
              "(wall rows spaced for it; 0: clear Min Coverage of the reachable floor instead)", 1.0)
@@ -232,8 +257,12 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         except ValueError as e:
             _report(obj, str(e))
             return
-        except planner.ABORT:  # FreeCAD's progress indicator: the user aborted (Esc)
-            _report(obj, translate("PlungeRough", "planning cancelled"))
+        except (planner.ABORT, RuntimeError) as e:  # the user aborted (Esc): said, nothing cut
+            if not planner.is_abort(e):
+                raise
+            _report(obj, translate("PlungeRough", "planning cancelled: nothing is cut until it plans again "
+                                   "(the next recompute)"), error=False)
+            FreeCAD.addDocumentObserver(_PlanAgain(obj))
             return
         with open(os.path.join(workdir, "plan.svg"), "w") as f:
             f.write(plan.pop("svg"))
@@ -336,7 +365,13 @@ def build_input(obj, tcs, faces, workdir, notes=None):
         # Lead-out and stock-aware heights are explicit moves: a canned cycle has neither.
         "lead_out": 0.0 if obj.UseCannedCycle else obj.LeadOut.Value,
         "stock_aware_heights": bool(obj.StockAwareHeights and not obj.UseCannedCycle),
+        "peck": bool(obj.PeckEnabled),
     }
+    if obj.DwellTime > 0 and not obj.UseCannedCycle:
+        data["peck_dwell"] = obj.DwellTime
+    if obj.PeckDepth.Value > 0:
+        for tool in data["tools"]:
+            tool["peck_depth"] = obj.PeckDepth.Value
     data.update(STRATEGIES.get(obj.Strategy, {}))
     if obj.AutoSelectTools:
         data["tool_library"] = data.pop("tools")

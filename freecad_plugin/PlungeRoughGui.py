@@ -76,8 +76,11 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
         """UI to object."""
         for spin in self.spins.values():
             spin.updateProperty()
-        if obj.UseCannedCycle != self.form.useCannedCycle.isChecked():
-            obj.UseCannedCycle = self.form.useCannedCycle.isChecked()
+        for prop, box in (("UseCannedCycle", self.form.useCannedCycle), ("PeckEnabled", self.form.peckEnabled)):
+            if getattr(obj, prop) != box.isChecked():
+                setattr(obj, prop, box.isChecked())
+        if abs(obj.DwellTime - self.form.dwellTime.value()) > 1e-9:
+            obj.DwellTime = self.form.dwellTime.value()
         if obj.AutoSelectTools != self.form.autoSelectTools.isChecked():
             obj.AutoSelectTools = self.form.autoSelectTools.isChecked()
         if obj.Strategy != self.form.strategy.currentText():
@@ -102,6 +105,8 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
         for spin in self.spins.values():
             compat.refresh_spin_box(spin)
         self.form.useCannedCycle.setChecked(obj.UseCannedCycle)
+        self.form.peckEnabled.setChecked(obj.PeckEnabled)
+        self.form.dwellTime.setValue(obj.DwellTime)
         self.form.autoSelectTools.setChecked(obj.AutoSelectTools)
         self.form.strategy.blockSignals(True)
         self.form.strategy.clear()
@@ -131,6 +136,8 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             self.form.floorAllowance.editingFinished,
             self.form.chordTolerance.editingFinished,
             self.form.peckDepth.editingFinished,
+            self.form.peckEnabled.stateChanged,
+            self.form.dwellTime.editingFinished,
             self.form.maxWallStock.editingFinished,
             self.form.maxFloorStock.editingFinished,
             self.form.leadOut.editingFinished,

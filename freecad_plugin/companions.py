@@ -39,9 +39,14 @@ def plunges_of_tool(plan, tc, start_holes=False):
 
 
 def toolCommands(op, plunges):
-    """One tool's plunges as Path commands, with the main operation's heights and cycle."""
-    return generator.generate(plunges, op.ClearanceHeight.Value, op.SafeHeight.Value, op.UseCannedCycle,
-                              op.PeckDepth.Value)
+    """One tool's plunges as Path commands, with the main operation's heights,
+    cycle and pecks (the tool's peck depth and the clearance as planned)."""
+    data = json.loads(op.PlanData) if op.PlanData else {"input": {}, "plan": {"stats": {"per_tool": []}}}
+    ids = {p["tool_id"] for p in plunges}
+    peck = max([t.get("peck_depth", 0.0) for t in data["plan"]["stats"]["per_tool"] if t["tool_id"] in ids] or [0.0])
+    return generator.generate(plunges, op.ClearanceHeight.Value, op.SafeHeight.Value, op.UseCannedCycle, peck,
+                              rapid_clearance=data["input"].get("rapid_clearance", 1.0),
+                              dwell=getattr(op, "DwellTime", 0.0))
 
 
 class ObjectPlungeRoughTool(PathOp.ObjectOp):

@@ -15,14 +15,24 @@ def planner():
     return plunge
 
 
-# What FreeCAD's progress indicator raises when the user aborts (not an Exception).
+# What FreeCAD raises when the user aborts (not an Exception).
 ABORT = getattr(FreeCAD.Base, "FreeCADAbort", KeyboardInterrupt)
+
+
+def is_abort(error):
+    """Whether an exception is the user's abort: FreeCAD's own, or the
+    progress indicator's RuntimeError when it is the outermost one (a
+    recompute with the "can abort" preference off)."""
+    return isinstance(error, ABORT) or (isinstance(error, RuntimeError) and "abort progress indicator" in str(error))
 
 
 class PlanProgress:
     """The planner's progress in FreeCAD's progress indicator (the GUI's status
-    bar, which keeps the GUI drawn while planning; Esc there asks whether to
-    abort, and aborting cancels the plan)."""
+    bar, which keeps the GUI drawn while planning). Esc asks whether to abort;
+    aborting cancels the plan. Inside a recompute the document's own indicator
+    is the outermost one and ignores this one's steps (FreeCAD 0.20 to 1.1):
+    FreeCAD.checkAbort() is what processes events and raises the abort there,
+    on every FreeCAD version (in freecadcmd it does nothing)."""
 
     def __init__(self, label):
         self.label = label
@@ -36,7 +46,10 @@ class PlanProgress:
             self.indicator.start("%s: %s (%d %%)" % (self.label, stage, round(100 * fraction)), 0)
             self.running = True
             self.stage = stage
-        self.indicator.next(True)  # raises when the user aborts
+        self.indicator.next(True)  # raises when the user aborts an outermost indicator
+        check = getattr(FreeCAD, "checkAbort", None)
+        if check is not None:
+            check()  # raises FreeCADAbort once the user pressed Esc and confirmed
         return True
 
     def stop(self):

@@ -8,6 +8,7 @@
 #include "detail.hpp"
 #include "plunge/error.hpp"
 #include "plunge/optimizer.hpp"
+#include "plunge/progress.hpp"
 
 namespace plunge {
 
@@ -35,17 +36,27 @@ double climb(Point x, double v, double step, double minStep, const std::vector<P
   return v;
 }
 
+// The optimizer's budget for one plunge's search: far above what it needs
+// (a few thousand evaluations); past it, the plunge's depth is sampled densely.
+constexpr int kPlungeEvaluations = 60000;
+
 // Maximum of g over the circle of radius r around c (eq. 4.84), by the global
 // optimizer in one periodic variable; -inf if g is nowhere finite on it.
-double rimMaximum(const std::function<double(Vec2)>& g, Vec2 c, double r, double spacing) {
+// converged: false when the optimizer ran out of budget.
+double rimMaximum(const std::function<double(Vec2)>& g, Vec2 c, double r, double spacing, bool& converged) {
   OptimizeOptions opt;
   opt.periodic = true;
   opt.skipNonFinite = true;
   opt.samples = std::clamp(static_cast<int>(std::ceil(2 * kPi * r / spacing)), 48, 720);
+  opt.maxEvaluations = kPlungeEvaluations;
   try {
-    return optimize([&](const double* t) { return g({c.x + r * std::cos(t[0]), c.y + r * std::sin(t[0])}); },
-                    {{0.0, 2 * kPi}}, Goal::Maximize, opt)
-        .value;
+    const OptimizeResult o = optimize(
+        [&](const double* t) { return g({c.x + r * std::cos(t[0]), c.y + r * std::sin(t[0])}); }, {{0.0, 2 * kPi}},
+        Goal::Maximize, opt);
+    converged = converged && o.converged;
+    return o.value;
+  } catch (const Cancelled&) {
+    throw;
   } catch (const Error&) {
     return -kInf;  // no floor anywhere on the rim
   }
@@ -62,20 +73,33 @@ double cutterProfile(const Cutter& c, double rho) {
   return rc - std::sqrt(std::max(0.0, rc * rc - t * t));
 }
 
-DepthSolver::DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spacing)
+DepthSolver::DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spacing, const Progress& progress)
     : floor_(floor), spacing_(spacing) {
-  if (!floor.isFlat()) peaks_ = floor.peaks(lo, hi, spacing);
+  if (floor.isFlat()) return;
+  PeakSearch found = floor.peaks(lo, hi, spacing, progress);
+  peaks_ = std::move(found.points);
+  peakFallbacks_ = found.fallbacks;
 }
 
 double DepthSolver::stopHeight(Vec2 c, const Cutter& cutter) const {
   if (floor_.isFlat()) return floor_.height(c);
+  bool converged = true;
+  const double z = searchedStopHeight(c, cutter, converged);
+  if (converged) return z;
+  // The optimizer ran out of budget: a dense drop-cutter sample, refined
+  // locally, at a tenth of the solver's cells (never above the search's own).
+  ++*depthFallbacks_;
+  return std::max(z, stopHeightBruteForce(floor_, c, cutter, std::min(0.1 * spacing_, 0.05 * cutter.radius)));
+}
+
+double DepthSolver::searchedStopHeight(Vec2 c, const Cutter& cutter, bool& converged) const {
   const double R = cutter.radius;
   auto lift = [&](Vec2 q) {  // floor height minus the cutter's profile above its tip
     const double rho = dist(q, c);
     if (rho > R * (1 + 1e-12)) return kNaN;
     return floor_.height(q) - cutterProfile(cutter, rho);
   };
-  double best = rimMaximum(lift, c, R, spacing_);
+  double best = rimMaximum(lift, c, R, spacing_, converged);
   // Peaks of the floor inside the disk (eq. 4.83 and the thesis's local maxima).
   std::vector<std::vector<double>> inner;
   for (const Vec3& p : peaks_)
@@ -89,10 +113,14 @@ double DepthSolver::stopHeight(Vec2 c, const Cutter& cutter) const {
     opt.skipNonFinite = true;
     opt.samples = std::clamp(static_cast<int>(std::ceil(2 * R / spacing_)) + 1, 17, 61);
     opt.starts = inner;
+    opt.maxEvaluations = kPlungeEvaluations;
     try {
-      best = std::max(best, optimize([&](const double* q) { return lift({q[0], q[1]}); },
-                                     {{c.x - R, c.x + R}, {c.y - R, c.y + R}}, Goal::Maximize, opt)
-                                .value);
+      const OptimizeResult o = optimize([&](const double* q) { return lift({q[0], q[1]}); },
+                                        {{c.x - R, c.x + R}, {c.y - R, c.y + R}}, Goal::Maximize, opt);
+      best = std::max(best, o.value);
+      converged = converged && o.converged;
+    } catch (const Cancelled&) {
+      throw;
     } catch (const Error&) {
       // no floor under the disk: reported below unless the rim found some
     }
@@ -102,7 +130,13 @@ double DepthSolver::stopHeight(Vec2 c, const Cutter& cutter) const {
 }
 
 double DepthSolver::plungeHeight(Vec2 c, const Cutter& cutter, double floorAllowance, double radialAllowance) const {
-  const double z = stopHeight(c, cutter) + floorAllowance;
+  // The floor allowance is a thickness normal to the floor, as a finishing
+  // pass leaves it: the cutter offset by it in every direction (its tip that
+  // much lower) touches the floor where the cutter keeps it. Added vertically
+  // instead, a slope of angle t would keep only cos(t) of it.
+  const double z = floor_.isFlat() || floorAllowance <= 0.0
+                       ? stopHeight(c, cutter) + floorAllowance
+                       : stopHeight(c, grownAround(cutter, floorAllowance)) + floorAllowance;
   if (floor_.isFlat() || radialAllowance <= 0.0) return z;
   // Beside the cutter the floor keeps the radial allowance: the cutter grown
   // sideways by it (a flat one wider, a ball or bull nose with a flat of the
@@ -119,6 +153,18 @@ Cutter grownSideways(const Cutter& cutter, double by) {
   if (cutter.shape == CutterShape::Ball) {
     g.shape = CutterShape::Bull;
     g.cornerRadius = cutter.radius;
+  }
+  return g;
+}
+
+Cutter grownAround(const Cutter& cutter, double by) {
+  Cutter g = cutter;
+  g.radius += by;
+  if (cutter.shape == CutterShape::Flat) {
+    g.shape = CutterShape::Bull;
+    g.cornerRadius = by;
+  } else if (cutter.shape == CutterShape::Bull) {
+    g.cornerRadius += by;
   }
   return g;
 }

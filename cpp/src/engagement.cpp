@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "plunge/covering.hpp"
+#include "plunge/cuts.hpp"
 #include "plunge/error.hpp"
 #include "plunge/polygon.hpp"
 #include "plunge/sequencing.hpp"
@@ -45,10 +46,10 @@ constexpr double kRingChord = 0.9;
 // and at least kMinGainCells of them (fewer is the raster's noise).
 constexpr double kMinGainShare = 0.003;
 constexpr int kMinGainCells = 3;
-// The rings and the slivers take a plunge measured up to this share of a cell
-// over the limit: the raster measures to about a cell, and another raster (a
-// G-code checker's) may see a cell more; motion.hpp counts 1.5 cells over.
-constexpr double kMeasureSlack = 0.5;
+// A plunge is within its limit when its exact engagement (cuts.hpp) is at
+// most this over it: the measure's own rounding (its circles are exact, its
+// radii 0.25 degrees apart, refined).
+constexpr double kExactSlack = 0.002;
 // Entries to the paths: a row entered before the contour beside it is cut
 // cuts its ends, which the contour covers (on sculptured floors, where walks
 // stop at deeper neighbours, that costs plunges); so the contour's positions
@@ -84,12 +85,13 @@ class Targets {
  public:
   // The points are the stock's cell centres: a plunge covers a point exactly
   // when it cuts the point's cell.
-  Targets(const std::vector<Plunge>& planned, const Cutter& cutter, const HeightField& stock)
+  Targets(const std::vector<Plunge>& planned, const Cutter& cutter, const HeightField& stock, const Progress& progress)
       : bucket_(cutter.radius) {
-    std::map<std::pair<long long, long long>, size_t> cell;
+    std::unordered_map<long long, size_t> cell;
     const double h = stock.spacing();
     const Vec2 origin = stock.cellCentre({0.0, 0.0});
     for (const Plunge& p : planned) {
+      progress.tick();
       const Vec2 c{p.x, p.y};
       const long n = std::lround(std::ceil(2 * cutter.radius / h)) + 1;
       const Vec2 first = stock.cellCentre(c - Vec2{cutter.radius, cutter.radius});
@@ -99,7 +101,7 @@ class Targets {
           const double rho = dist(q, c);
           if (rho > cutter.radius) continue;
           const double z = p.z + cutterProfile(cutter, rho);
-          auto [it, fresh] = cell.try_emplace({std::llround((q.x - origin.x) / h), std::llround((q.y - origin.y) / h)},
+          auto [it, fresh] = cell.try_emplace(pack(std::lround((q.x - origin.x) / h), std::lround((q.y - origin.y) / h)),
                                               points_.size());
           if (fresh) {
             points_.push_back({q, z, false, false});
@@ -521,6 +523,7 @@ class Grower {
   void add(const Plunge& p) {
     order_.push_back(p);
     stock_.cut({p.x, p.y}, cutterOf(toolOf(p.toolId)), p.z);
+    cuts_.add({p.x, p.y}, cutterOf(toolOf(p.toolId)), p.z);
     newDisks_.push_back({{p.x, p.y}, 0.5 * p.diameter});
   }
   void settle() {
@@ -553,10 +556,11 @@ class Grower {
     other.cleared_ = cleared_;
     other.order_ = order_;
     other.holes_ = holes_;
+    other.cuts_ = cuts_;
     std::future<void> trial =
         std::async(std::launch::async, [&] { other.grow(tool, planned, GrowthPattern::Offsets); });
     grow(tool, planned, GrowthPattern::Rows);
-    trial.get();
+    progress_.await(trial);
     auto cost = [begin](const Grower& g) {
       size_t n = g.order_.size() + g.holes_.size();
       for (size_t k = begin; k < g.order_.size(); ++k) n += g.order_[k].start;
@@ -568,6 +572,7 @@ class Grower {
       newDisks_ = std::move(other.newDisks_);
       order_ = std::move(other.order_);
       holes_ = std::move(other.holes_);
+      cuts_ = std::move(other.cuts_);
     }
   }
 
@@ -579,7 +584,7 @@ class Grower {
     const double r = cutter.radius, e = std::min(engagementLimit(tool), 2 * r);
     const double coreR = coreRadius(tool);
     const double h = stock_.spacing();
-    Targets targets(planned, cutter, stock_);
+    Targets targets(planned, cutter, stock_, progress_);
     keepFloorStock(targets);
     for (const Plunge& p : planned) targets.update({p.x, p.y}, r, stock_);
     // Material in the wall band is the walls' stock (kept within max_wall_stock
@@ -616,9 +621,10 @@ class Grower {
           targets.defer(c, cutter, *z, stock_);
           continue;
         }
-        const HeightField::Contact k = stock_.contact(c, cutter, *z, coreR);
-        if (!k.coreClear || k.engagement > e + kMeasureSlack * h) continue;
-        if (k.engagement < tool.minEngagement) {
+        if (!stock_.contact(c, cutter, *z, coreR).coreClear) continue;
+        const double engaged = cuts_.engagement(c, cutter, *z, e + kExactSlack);
+        if (engaged > e + kExactSlack) continue;
+        if (engaged < tool.minEngagement) {
           thin.push_back({c, *z});
           continue;
         }
@@ -653,8 +659,8 @@ class Grower {
     std::vector<Vec2> at;
     for (size_t k = begin; k < order_.size(); ++k) at.push_back({order_[k].x, order_[k].y});
     const double reach = order_[begin].diameter + 2 * stock_.spacing() + 0.01;
-    const std::vector<int> order =
-        shortenKeepingOrder(at, [&](int a, int b) { return dist(at[a], at[b]) < reach; });
+    const std::vector<int> order = shortenKeepingOrder(
+        at, [&](int a, int b) { return dist(at[a], at[b]) < reach; }, [this] { progress_.tick(); });
     const std::vector<Plunge> was(order_.begin() + static_cast<long>(begin), order_.end());
     for (size_t k = 0; k < order.size(); ++k) order_[begin + k] = was[order[k]];
   }
@@ -739,15 +745,12 @@ class Grower {
       }
       return p.z;
     };
-    // The raster measures to about a cell either way. A plunge entered
-    // anywhere must measure a quarter cell under the band; one a step on from
-    // the plunge before it on its path, no deeper, is within the band by
-    // construction (its crescent), and the measure only guards against the
-    // unforeseen, within the tolerance motion.hpp counts over-engagement with.
-    const double entrySlack = -0.25 * h, stepSlack = 1.0 * h;
-    auto judge = [&](size_t k, double slack) {
+    // Every plunge, entered anywhere or a step on along its path, is measured
+    // exactly (cuts.hpp) against the plunges before it.
+    auto judge = [&](size_t k) {
       Pos& p = pos[k];
       if (!p.known) {
+        progress_.tick();
         p.known = true;
         if (targets.open(p.c, r) < minGain || !zOf(p)) {
           p.skip = true;
@@ -756,13 +759,14 @@ class Grower {
           p.skip = true;
         } else {
           const HeightField::Contact m = stock_.contact(p.c, cutter, *p.z, coreR > 0 ? coreR + coreMargin : 0.0);
-          p.engagement = m.engagement;
           p.solid = m.solid;
           p.coreClear = m.coreClear;
+          if (!p.solid && p.coreClear) p.engagement = cuts_.engagement(p.c, cutter, *p.z, e + kExactSlack);
         }
       }
       if (p.skip) return Verdict::Skip;
-      if (!p.coreClear || p.engagement > e + slack) return p.solid ? Verdict::Solid : Verdict::Blocked;
+      if (p.solid) return Verdict::Solid;  // a drill into solid: a start, whatever the limit
+      if (!p.coreClear || p.engagement > e + kExactSlack) return Verdict::Blocked;
       return p.engagement < tool.minEngagement ? Verdict::Thin : Verdict::Ok;
     };
     auto cut = [&](size_t k, bool start) {
@@ -785,7 +789,7 @@ class Grower {
     auto contourOpens = [&](Vec2 c) {
       return anyNear(near, c, cell, [&](size_t q) {
         return pos[q].open && paths[pos[q].path].contour && dist(pos[q].c, c) <= 2 * r &&
-               judge(q, entrySlack) == Verdict::Ok;
+               judge(q) == Verdict::Ok;
       });
     };
     // From a plunge just made, on along its path while the plunges keep the
@@ -801,10 +805,9 @@ class Grower {
       for (std::optional<size_t> q = along(k, dir); q && pos[*q].open; q = along(*q, dir)) {
         progress_.tick();
         if (connector && contourOpens(pos[last].c)) break;
-        if (!connector && pos[*q].covered && judge(*q, entrySlack) != Verdict::Skip) break;
+        if (!connector && pos[*q].covered && judge(*q) != Verdict::Skip) break;
         zOf(pos[*q]);
-        const bool onStep = dist(pos[*q].c, pos[last].c) <= step + 1e-6 && pos[*q].z && *pos[*q].z >= *pos[last].z - 1e-9;
-        const Verdict v = judge(*q, onStep ? stepSlack : entrySlack);
+        const Verdict v = judge(*q);
         if (v == Verdict::Skip) {
           pos[*q].open = false;
         } else if (v == Verdict::Ok) {
@@ -812,7 +815,7 @@ class Grower {
           last = *q;
         } else if (v == Verdict::Thin) {
           const std::optional<size_t> next = along(*q, dir);
-          if (next && pos[*next].open && judge(*next, entrySlack) == Verdict::Ok) {
+          if (next && pos[*next].open && judge(*next) == Verdict::Ok) {
             pos[*q].open = false;  // the next one cuts wider without it
           } else {
             cut(*q, false);
@@ -846,7 +849,7 @@ class Grower {
       std::optional<size_t> entry, thin, start;
       for (const auto& [unused, k] : order) {
         if (pos[k].covered && (thin || start)) break;
-        const Verdict v = judge(k, entrySlack);
+        const Verdict v = judge(k);
         if (v == Verdict::Skip) {
           pos[k].open = false;
         } else if (v == Verdict::Ok) {
@@ -886,6 +889,7 @@ class Grower {
     hole.startHole = hole.start = true;
     holes_.push_back(hole);
     stock_.cut(c, cutterOf(drill), hole.z);
+    cuts_.add(c, cutterOf(drill), hole.z);
   }
 
   // Pieces of the tool's planned cut narrower than the stock's cells, which the
@@ -897,13 +901,14 @@ class Grower {
     std::vector<Circle> want;
     for (const Plunge& p : planned) want.push_back({{p.x, p.y}, cutter.radius});
     const double coreR = coreRadius(tool);
-    const double e = std::min(engagementLimit(tool), 2 * cutter.radius) + kMeasureSlack * stock_.spacing();
+    const double e = std::min(engagementLimit(tool), 2 * cutter.radius) + kExactSlack;
     Polygons left = poly::subtract(poly::unionOfDisks(want), cleared_);
     if (in_.maxWallStock > 0)  // beyond the wall band, as the targets
       left = poly::intersect(left,
                              poly::offset(allowedRegion(region_, in_.radialAllowance), -kWallBand * in_.maxWallStock));
     std::vector<size_t> chosen;  // for each piece, the planned plunge covering most of it
     for (const Polygons& piece : poly::components(left)) {
+      progress_.tick();
       if (poly::area(piece) < 0.01) continue;
       int best = -1;
       size_t inside = 0;
@@ -918,8 +923,8 @@ class Grower {
       if (best >= 0) chosen.push_back(static_cast<size_t>(best));
     }
     placeNearestFirst(tool, cutter, planned, std::move(chosen), targets, at, [&](const Plunge& s) {
-      const HeightField::Contact k = stock_.contact({s.x, s.y}, cutter, s.z, coreR);
-      return k.coreClear && k.engagement <= e;
+      return stock_.contact({s.x, s.y}, cutter, s.z, coreR).coreClear &&
+             cuts_.engagement({s.x, s.y}, cutter, s.z, e) <= e;
     });
     settle();
   }
@@ -932,6 +937,7 @@ class Grower {
                         std::vector<size_t> left, Targets& targets, Vec2& at, Keeps keeps) {
     int placed = 0;
     while (!left.empty()) {
+      progress_.tick();
       size_t best = 0;
       for (size_t i = 1; i < left.size(); ++i)
         if (dist(Vec2{planned[left[i]].x, planned[left[i]].y}, at) <
@@ -952,6 +958,7 @@ class Grower {
     p.start = start;
     order_.push_back(p);
     stock_.cut(c, cutter, z);
+    cuts_.add(c, cutter, z);
     newDisks_.push_back({c, cutter.radius});
     targets.update(c, cutter.radius, stock_);
     targets.defer(c, cutter, z, stock_);  // what it left above its target, for the starts
@@ -968,13 +975,14 @@ class Grower {
     auto keeps = [&](const Plunge& s) {
       const Vec2 c{s.x, s.y};
       if (targets.gain(c, cutter, s.z, stock_) < minGain) return false;
-      const HeightField::Contact k = stock_.contact(c, cutter, s.z, coreR);
-      return k.coreClear && k.engagement <= e;
+      return stock_.contact(c, cutter, s.z, coreR).coreClear && cuts_.engagement(c, cutter, s.z, e) <= e;
     };
     // Those that keep the limits now, nearest first from where the tool is.
     std::vector<size_t> left;
-    for (size_t k = 0; k < planned.size(); ++k)
+    for (size_t k = 0; k < planned.size(); ++k) {
+      progress_.tick();
       if (keeps(planned[k])) left.push_back(k);
+    }
     return placeNearestFirst(tool, cutter, planned, std::move(left), targets, at, keeps);
   }
 
@@ -986,6 +994,7 @@ class Grower {
                std::vector<bool>& tried, Targets& targets, int minGain, Vec2& at) {
     int best = -1, bestGain = 0;
     for (size_t k = 0; k < planned.size(); ++k) {
+      progress_.tick();
       if (tried[k]) continue;
       const int g = targets.gain({planned[k].x, planned[k].y}, cutter, planned[k].z, stock_);
       if (g > bestGain) {
@@ -1006,6 +1015,7 @@ class Grower {
       hole.startHole = hole.start = true;
       holes_.push_back(hole);
       stock_.cut(c, cutterOf(drill), hole.z);
+      cuts_.add(c, cutterOf(drill), hole.z);
     }
     place(tool, cutter, c, s.z, targets, true);
     at = c;
@@ -1016,6 +1026,7 @@ class Grower {
   const Region& region_;
   const DepthSolver& depths_;
   HeightField& stock_;
+  Cuts cuts_{kEngagementSkin};  // the same plunges as circles: the exact engagement
   const Progress& progress_;
   Polygons cleared_;
   std::vector<Circle> newDisks_;

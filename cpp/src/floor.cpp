@@ -40,13 +40,57 @@ int samplesFor(double extent, double spacing, int lo, int hi) {
 
 bool inside(Vec3 p, Vec2 lo, Vec2 hi) { return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y; }
 
+// Samples per variable of the fallback when the optimizer runs out of budget.
+constexpr int kFallbackSamples = 241;
+
+// The optimizer's options for a peak search: its grid, and progress polled.
+OptimizeOptions peakOptions(int samples, const Progress& progress) {
+  OptimizeOptions opt;
+  opt.samples = samples;
+  opt.clusterRadius = 2.5 / samples;  // a few grid steps: peaks stay apart
+  opt.skipNonFinite = true;           // outside the domain (a trimmed face)
+  opt.poll = [&progress] { progress.tick(); };
+  return opt;
+}
+
+// The fallback of a peak search: `at(i, j)` on an n x m grid (m = 1: a curve)
+// gives a point (z NaN outside the domain); every grid point at least as high
+// as its neighbours, raised by its largest rise or fall to one of them.
+template <class F>
+std::vector<Vec3> sampledPeaks(int n, int m, F at, const Progress& progress) {
+  std::vector<Vec3> g(static_cast<size_t>(n) * m);
+  for (int j = 0; j < m; ++j) {
+    progress.tick();
+    for (int i = 0; i < n; ++i) g[static_cast<size_t>(j) * n + i] = at(i, j);
+  }
+  std::vector<Vec3> out;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < n; ++i) {
+      const Vec3& p = g[static_cast<size_t>(j) * n + i];
+      if (!std::isfinite(p.z)) continue;
+      bool top = true;
+      double rise = 0;
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          const int a = i + di, b = j + dj;
+          if ((!di && !dj) || a < 0 || a >= n || b < 0 || b >= m) continue;
+          const double z = g[static_cast<size_t>(b) * n + a].z;
+          if (!std::isfinite(z)) continue;
+          top = top && z <= p.z;
+          rise = std::max(rise, std::fabs(z - p.z));
+        }
+      if (top) out.push_back({p.x, p.y, p.z + rise});
+    }
+  return out;
+}
+
 // --- flat --------------------------------------------------------------------
 
 class FlatFloor : public FloorSurface {
  public:
   explicit FlatFloor(double z) : z_(z) {}
   double height(Vec2) const override { return z_; }
-  std::vector<Vec3> peaks(Vec2 lo, Vec2, double) const override { return {{lo.x, lo.y, z_}}; }
+  PeakSearch peaks(Vec2 lo, Vec2, double, const Progress&) const override { return {{{lo.x, lo.y, z_}}, 0}; }
   bool isFlat() const override { return true; }
   std::unique_ptr<FloorSurface> clone() const override { return std::make_unique<FlatFloor>(z_); }
 
@@ -78,16 +122,20 @@ class ExpressionFloor : public FloorSurface {
     const double v = parser_.Eval();
     return std::isfinite(v) ? v : kNaN;
   }
-  std::vector<Vec3> peaks(Vec2 lo, Vec2 hi, double spacing) const override {
+  PeakSearch peaks(Vec2 lo, Vec2 hi, double spacing, const Progress& progress) const override {
     const int n = samplesFor(std::max(hi.x - lo.x, hi.y - lo.y), spacing, 41, 301);
-    OptimizeOptions opt;
-    opt.samples = n;
-    opt.clusterRadius = 2.5 / n;  // a few grid steps: peaks stay apart
-    opt.skipNonFinite = true;
-    const OptimizeResult r =
-        optimize([&](const double* q) { return height({q[0], q[1]}); }, {{lo.x, hi.x}, {lo.y, hi.y}}, Goal::Maximize, opt);
-    std::vector<Vec3> out;
-    for (const LocalOptimum& o : r.locals) out.push_back({o.x[0], o.x[1], o.value});
+    const OptimizeResult r = optimize([&](const double* q) { return height({q[0], q[1]}); },
+                                      {{lo.x, hi.x}, {lo.y, hi.y}}, Goal::Maximize, peakOptions(n, progress));
+    PeakSearch out;
+    for (const LocalOptimum& o : r.locals) out.points.push_back({o.x[0], o.x[1], o.value});
+    if (r.converged) return out;
+    ++out.fallbacks;
+    const int k = kFallbackSamples;
+    for (const Vec3& p : sampledPeaks(k, k, [&](int i, int j) {
+           const Vec2 q{lo.x + (hi.x - lo.x) * i / (k - 1), lo.y + (hi.y - lo.y) * j / (k - 1)};
+           return Vec3{q.x, q.y, height(q)};
+         }, progress))
+      out.points.push_back(p);
     return out;
   }
 
@@ -138,54 +186,26 @@ class BrepFloor : public FloorSurface {
     return best;
   }
 
-  std::vector<Vec3> peaks(Vec2 lo, Vec2 hi, double spacing) const override {
-    std::vector<Vec3> out;
+  PeakSearch peaks(Vec2 lo, Vec2 hi, double spacing, const Progress& progress) const override {
+    PeakSearch out;
     const Vec2 elo = lo - Vec2{spacing, spacing}, ehi = hi + Vec2{spacing, spacing};
-    // Peaks inside faces: local maxima of z(u, v) over each face's parameters.
-    for (const auto& f : faces_) {
-      if (f->hi.x < elo.x || f->lo.x > ehi.x || f->hi.y < elo.y || f->lo.y > ehi.y) continue;
-      OptimizeOptions opt;
-      opt.samples = samplesFor(std::max(f->hi.x - f->lo.x, f->hi.y - f->lo.y), spacing, 21, 201);
-      opt.clusterRadius = 2.5 / opt.samples;
-      opt.skipNonFinite = true;  // outside the trimmed face
-      const OptimizeResult r = optimize(
-          [&](const double* uv) {
-            if (f->cls->Perform(gp_Pnt2d(uv[0], uv[1])) == TopAbs_OUT) return kNaN;
-            return f->surf.Value(uv[0], uv[1]).Z();
-          },
-          {{f->u0, f->u1}, {f->v0, f->v1}}, Goal::Maximize, opt);
-      for (const LocalOptimum& o : r.locals) {
-        const gp_Pnt p = f->surf.Value(o.x[0], o.x[1]);
-        out.push_back({p.X(), p.Y(), p.Z()});
-      }
-    }
+    for (const auto& f : faces_)
+      if (!(f->hi.x < elo.x || f->lo.x > ehi.x || f->hi.y < elo.y || f->lo.y > ehi.y))
+        facePeaks(*f, spacing, progress, out);
     // Ridges: local maxima of z along every edge; and every vertex.
     TopTools_IndexedMapOfShape edges, vertices;
     TopExp::MapShapes(shape_, TopAbs_EDGE, edges);
     TopExp::MapShapes(shape_, TopAbs_VERTEX, vertices);
-    for (int i = 1; i <= edges.Extent(); ++i) {
-      const TopoDS_Edge& e = TopoDS::Edge(edges(i));
-      if (BRep_Tool::Degenerated(e) || !BRep_Tool::IsGeometric(e)) continue;
-      BRepAdaptor_Curve c(e);
-      const double t0 = c.FirstParameter(), t1 = c.LastParameter();
-      if (!(t1 > t0)) continue;
-      OptimizeOptions opt;
-      opt.samples = samplesFor(c.Value(t0).Distance(c.Value(t1)) * 2, spacing, 21, 401);
-      const OptimizeResult r = optimize([&](const double* t) { return c.Value(t[0]).Z(); }, {{t0, t1}},
-                                        Goal::Maximize, opt);
-      for (const LocalOptimum& o : r.locals) {
-        const gp_Pnt p = c.Value(o.x[0]);
-        out.push_back({p.X(), p.Y(), p.Z()});
-      }
-    }
+    for (int i = 1; i <= edges.Extent(); ++i) edgePeaks(TopoDS::Edge(edges(i)), spacing, progress, out);
     for (int i = 1; i <= vertices.Extent(); ++i) {
       const gp_Pnt p = BRep_Tool::Pnt(TopoDS::Vertex(vertices(i)));
-      out.push_back({p.X(), p.Y(), p.Z()});
+      out.points.push_back({p.X(), p.Y(), p.Z()});
     }
     std::vector<Vec3> kept;
-    for (const Vec3& p : out)
+    for (const Vec3& p : out.points)
       if (inside(p, elo, ehi)) kept.push_back(p);
-    return kept;
+    out.points = std::move(kept);
+    return out;
   }
 
  private:
@@ -203,6 +223,62 @@ class BrepFloor : public FloorSurface {
     mutable double lastU = 0, lastV = 0;  // Newton's warm start: neighbouring queries are close
     mutable bool hasLast = false;
   };
+
+  // Peaks inside a face: local maxima of z(u, v) over its parameters.
+  void facePeaks(const Face& f, double spacing, const Progress& progress, PeakSearch& out) const {
+    auto z = [&](double u, double v) {
+      // The classifier never returns from a non-finite point (the optimizer
+      // does not pass one; the fallback's grid has none either).
+      if (f.cls->Perform(gp_Pnt2d(u, v)) == TopAbs_OUT) return kNaN;
+      return f.surf.Value(u, v).Z();
+    };
+    const int n = samplesFor(std::max(f.hi.x - f.lo.x, f.hi.y - f.lo.y), spacing, 21, 201);
+    OptimizeResult r;
+    try {
+      r = optimize([&](const double* uv) { return z(uv[0], uv[1]); }, {{f.u0, f.u1}, {f.v0, f.v1}},
+                   Goal::Maximize, peakOptions(n, progress));
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error&) {
+      return;  // no finite value: a face with nothing inside its parameter box
+    }
+    for (const LocalOptimum& o : r.locals) {
+      const gp_Pnt p = f.surf.Value(o.x[0], o.x[1]);
+      out.points.push_back({p.X(), p.Y(), p.Z()});
+    }
+    if (r.converged) return;
+    ++out.fallbacks;
+    const int k = kFallbackSamples;
+    for (const Vec3& p : sampledPeaks(k, k, [&](int i, int j) {
+           const double u = f.u0 + (f.u1 - f.u0) * i / (k - 1), v = f.v0 + (f.v1 - f.v0) * j / (k - 1);
+           const gp_Pnt q = f.surf.Value(u, v);
+           return Vec3{q.X(), q.Y(), z(u, v)};
+         }, progress))
+      out.points.push_back(p);
+  }
+
+  void edgePeaks(const TopoDS_Edge& e, double spacing, const Progress& progress, PeakSearch& out) const {
+    if (BRep_Tool::Degenerated(e) || !BRep_Tool::IsGeometric(e)) return;
+    BRepAdaptor_Curve c(e);
+    const double t0 = c.FirstParameter(), t1 = c.LastParameter();
+    if (!(t1 > t0) || !std::isfinite(t0) || !std::isfinite(t1)) return;
+    OptimizeOptions opt = peakOptions(samplesFor(c.Value(t0).Distance(c.Value(t1)) * 2, spacing, 21, 401), progress);
+    opt.clusterRadius = OptimizeOptions{}.clusterRadius;  // an edge is finite everywhere, its peaks few
+    opt.skipNonFinite = false;
+    const OptimizeResult r = optimize([&](const double* t) { return c.Value(t[0]).Z(); }, {{t0, t1}},
+                                      Goal::Maximize, opt);
+    for (const LocalOptimum& o : r.locals) {
+      const gp_Pnt p = c.Value(o.x[0]);
+      out.points.push_back({p.X(), p.Y(), p.Z()});
+    }
+    if (r.converged) return;
+    ++out.fallbacks;
+    for (const Vec3& p : sampledPeaks(kFallbackSamples * 4, 1, [&](int i, int) {
+           const gp_Pnt q = c.Value(t0 + (t1 - t0) * i / (kFallbackSamples * 4 - 1));
+           return Vec3{q.X(), q.Y(), q.Z()};
+         }, progress))
+      out.points.push_back(p);
+  }
 
   // Newton on (x(u, v), y(u, v)) = p; the face's point above p, if any.
   bool solve(const Face& f, Vec2 p, double& u, double& v) const {

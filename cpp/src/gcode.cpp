@@ -1,5 +1,6 @@
 #include "plunge/gcode.hpp"
 
+#include <algorithm>
 #include <iomanip>
 #include <map>
 #include <sstream>
@@ -32,7 +33,13 @@ std::string planToGcode(const PlanInput& input, const Plan& plan) {
     // rapid up only as high as the next move needs.
     s << "G0 X" << p.x << " Y" << p.y << "\n";
     s << "G0 Z" << p.approachZ << "\n";
+    // A deep hole into solid is pecked: up out of it after each peck to clear
+    // the chips, back down to just above where it stopped.
+    for (double at : p.pecks)
+      s << "G1 Z" << at << " F" << feed[p.toolId] << "\nG0 Z" << p.approachZ << "\nG0 Z"
+        << std::min(p.approachZ, at + input.rapidClearance) << "\n";
     s << "G1 Z" << p.z << " F" << feed[p.toolId] << "\n";
+    if (!p.pecks.empty() && input.peckDwell > 0) s << "G4 P" << input.peckDwell << "\n";
     if (p.leadOutZ) s << "G1 Z" << *p.leadOutZ << "\n";
     if (p.leadOut) s << "G1 X" << p.leadOut->x << " Y" << p.leadOut->y << "\n";
     s << "G0 Z" << p.retractZ << "\n";

@@ -98,7 +98,7 @@ std::vector<Tool> toolList(const json& ts, const std::string& what) {
     if (!ts[i].is_object()) throw Error(name + ": expected an object with a diameter");
     onlyKeys(ts[i],
              {"diameter", "id", "feed", "shape", "corner_radius", "max_engagement", "min_engagement",
-              "center_cutting", "core_diameter", "flute_length"},
+              "center_cutting", "core_diameter", "flute_length", "peck_depth"},
              name + ": ");
     if (!ts[i].contains("diameter")) throw Error(name + ".diameter: required");
     Tool t;
@@ -130,6 +130,7 @@ std::vector<Tool> toolList(const json& ts, const std::string& what) {
     limit("min_engagement", t.minEngagement);
     limit("flute_length", t.fluteLength);
     limit("core_diameter", t.coreDiameter);
+    limit("peck_depth", t.peckDepth);
     if (ts[i].contains("center_cutting")) {
       if (!ts[i]["center_cutting"].is_boolean()) throw Error(name + ".center_cutting: expected true or false");
       t.centerCutting = ts[i]["center_cutting"].get<bool>();
@@ -228,10 +229,15 @@ void readScalars(const json& j, PlanInput& in) {
       {"lead_out", &in.leadOut},
       {"rapid_clearance", &in.rapidClearance},
       {"max_plunges", &in.maxPlunges},
-      {"contact_ratio", &in.contactRatio}};
+      {"contact_ratio", &in.contactRatio},
+      {"peck_dwell", &in.peckDwell}};
   for (const auto& [key, value] : numbers)
     if (j.contains(key)) *value = number(j[key], key);
   if (j.contains("final_depth")) in.finalDepth = number(j["final_depth"], "final_depth");
+  if (j.contains("peck")) {
+    if (!j["peck"].is_boolean()) throw Error("peck: expected true or false");
+    in.peck = j["peck"].get<bool>();
+  }
   if (j.contains("stock_aware_heights")) {
     if (!j["stock_aware_heights"].is_boolean()) throw Error("stock_aware_heights: expected true or false");
     in.stockAwareHeights = j["stock_aware_heights"].get<bool>();
@@ -275,7 +281,8 @@ PlanInput planInputFromJson(const std::string& text) {
            {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",
             "min_coverage", "contact_ratio", "packing_order", "growth_pattern", "sequencing", "start",
             "tool_library", "selection", "time_model", "grid", "max_wall_stock", "max_floor_stock", "lead_out",
-            "stock_aware_heights", "rapid_clearance", "max_plunges", "final_depth"},
+            "stock_aware_heights", "rapid_clearance", "max_plunges", "final_depth", "peck", "peck_dwell",
+            "sections"},
            "input: ");
   PlanInput in;
   if (j.contains("version") && !(j["version"].is_number_integer() && j["version"].get<long long>() == 1))
@@ -286,6 +293,25 @@ PlanInput planInputFromJson(const std::string& text) {
     const json& is = j["islands"];
     if (!is.is_array()) throw Error("islands: expected a list of polylines");
     for (size_t i = 0; i < is.size(); ++i) in.islands.push_back(loop(is[i], "islands[" + std::to_string(i) + "]"));
+  }
+  if (j.contains("sections")) {
+    const json& ss = j["sections"];
+    if (!ss.is_array()) throw Error("sections: expected a list of {\"z\", \"boundary\", \"islands\"}");
+    for (size_t k = 0; k < ss.size(); ++k) {
+      const std::string name = "sections[" + std::to_string(k) + "]";
+      if (!ss[k].is_object() || !ss[k].contains("z") || !ss[k].contains("boundary"))
+        throw Error(name + ": expected {\"z\", \"boundary\", \"islands\"}");
+      onlyKeys(ss[k], {"z", "boundary", "islands"}, name + ": ");
+      Section s;
+      s.z = number(ss[k]["z"], name + ".z");
+      s.boundary = loop(ss[k]["boundary"], name + ".boundary");
+      if (ss[k].contains("islands")) {
+        if (!ss[k]["islands"].is_array()) throw Error(name + ".islands: expected a list of polylines");
+        for (size_t i = 0; i < ss[k]["islands"].size(); ++i)
+          s.islands.push_back(loop(ss[k]["islands"][i], name + ".islands[" + std::to_string(i) + "]"));
+      }
+      in.sections.push_back(std::move(s));
+    }
   }
   readTools(j, in);
   in.floor = readFloor(j);
@@ -324,11 +350,12 @@ std::string planToJson(const Plan& plan) {
               {"start_hole", p.startHole}};
     if (p.leadOut) o["lead_out"] = {p.leadOut->x, p.leadOut->y};
     if (p.leadOutZ) o["lead_out_z"] = *p.leadOutZ;
+    if (!p.pecks.empty()) o["pecks"] = p.pecks;
     out["plunges"].push_back(o);
   }
   const PlanStats& s = plan.stats;
   json per = json::array();
-  for (const ToolCount& t : s.perTool) per.push_back({{"tool_id", t.toolId}, {"diameter", t.diameter}, {"count", t.count}});
+  for (const ToolCount& t : s.perTool) per.push_back({{"tool_id", t.toolId}, {"diameter", t.diameter}, {"count", t.count}, {"peck_depth", t.peckDepth}});
   out["stats"] = {{"plunge_count", s.plungeCount},
                   {"per_tool", per},
                   {"region_area", s.regionArea},
@@ -356,8 +383,17 @@ std::string planToJson(const Plan& plan) {
                   {"no_lead_out_walls", s.noLeadOutWalls},
                   {"levels", s.levels},
                   {"minutes_at_safe_height", s.minutesAtSafeHeight},
-                  {"boundary_tolerance", s.boundaryTolerance}};
+                  {"boundary_tolerance", s.boundaryTolerance},
+                  {"pecked_plunges", s.peckedPlunges},
+                  {"depth_fallbacks", s.depthFallbacks}};
   if (!plan.warnings.empty()) out["warnings"] = plan.warnings;
+  if (!plan.broken.empty()) {
+    json broken = json::array();
+    for (const BrokenLimit& b : plan.broken)
+      broken.push_back({{"limit", b.limit}, {"asked", b.asked}, {"worst", b.worst}, {"at", {b.at.x, b.at.y}},
+                        {"count", b.count}, {"why", b.why}});
+    out["broken_limits"] = broken;
+  }
   if (plan.selection) {
     const ToolSelection& sel = *plan.selection;
     json necks = json::array(), parts = json::array(), sets = json::array();

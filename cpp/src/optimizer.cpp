@@ -14,6 +14,13 @@ namespace plunge {
 namespace {
 
 using detail::kInf;
+using detail::kNaN;
+
+// Evaluations between calls of OptimizeOptions::poll.
+constexpr int kPollEvery = 32;
+// A finite-difference step nearer the box's face than this is one-sided: a
+// step of 1e-17 would make the gradient, and then BFGS's update, blow up.
+constexpr double kMinStep = 1e-9;
 
 
 // The function to minimise in normalised coordinates u in [0, 1]^d.
@@ -38,10 +45,14 @@ class Problem {
     return x;
   }
 
-  // Objective to minimise; +inf outside the domain when allowed.
+  bool exhausted() const { return evaluations_ >= opt_.maxEvaluations; }
+
+  // Objective to minimise; +inf outside the domain when allowed, and at a
+  // point the arithmetic made non-finite (never passed on to f).
   double g(const Eigen::VectorXd& u) {
+    if (!u.allFinite()) return kInf;
     const std::vector<double> x = toX(u);
-    ++evaluations_;
+    if (++evaluations_ % kPollEvery == 0 && opt_.poll) opt_.poll();
     const double v = f_(x.data());
     if (!std::isfinite(v)) {
       if (opt_.skipNonFinite) return kInf;
@@ -65,6 +76,8 @@ class Problem {
       if (!opt_.periodic) {  // one-sided at the box's faces
         ha = std::min(h, u[i]);
         hb = std::min(h, 1.0 - u[i]);
+        if (ha < kMinStep) ha = 0;
+        if (hb < kMinStep) hb = 0;
       }
       a[i] -= ha;
       b[i] += hb;
@@ -83,7 +96,7 @@ class Problem {
     if (!std::isfinite(gu)) return u;
     Eigen::MatrixXd H = Eigen::MatrixXd::Identity(d_, d_);
     Eigen::VectorXd grad = gradient(u, gu);
-    for (int iter = 0; iter < 100; ++iter) {
+    for (int iter = 0; iter < 100 && !exhausted(); ++iter) {
       // Variables held at a face by a gradient pointing out of the box are fixed.
       std::vector<bool> fixedVar(d_, false);
       if (!opt_.periodic)
@@ -96,16 +109,17 @@ class Problem {
       Eigen::VectorXd p = -H * gfree;
       for (int i = 0; i < d_; ++i)
         if (fixedVar[i]) p[i] = 0;
-      if (p.dot(gfree) >= 0) {
+      if (!p.allFinite() || p.dot(gfree) >= 0) {
         H.setIdentity();
         p = -gfree;
       }
+      if (!p.allFinite()) break;
       // Armijo backtracking along the projected path.
       double alpha = std::min(1.0, 0.25 / std::max(p.lpNorm<Eigen::Infinity>(), 1e-300));
       Eigen::VectorXd un = u;
       double gn = gu;
       bool moved = false;
-      for (int k = 0; k < 50; ++k) {
+      for (int k = 0; k < 50 && !exhausted(); ++k) {
         un = project(u + alpha * p);
         gn = g(un);
         if (std::isfinite(gn) && gn <= gu + 1e-4 * grad.dot(un - u)) {
@@ -126,10 +140,11 @@ class Problem {
       grad = gradn;
       if (s.lpNorm<Eigen::Infinity>() < opt_.tolerance) break;
       const double sy = s.dot(y);
-      if (sy > 1e-16) {
+      if (sy > 1e-16 && y.allFinite()) {
         const double rho = 1.0 / sy;
         const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(d_, d_);
         H = (I - rho * s * y.transpose()) * H * (I - rho * y * s.transpose()) + rho * s * s.transpose();
+        if (!H.allFinite()) H.setIdentity();
       }
       if (improvement <= 1e-15 * (1.0 + std::fabs(gu)) && s.lpNorm<Eigen::Infinity>() < 1e-8) break;
     }
@@ -150,7 +165,7 @@ class Problem {
       for (double sx : {-1.0, 1.0})
         for (double sy : {-1.0, 1.0}) dirs.push_back(Eigen::Vector2d(sx, sy) / std::sqrt(2.0));
     double step = 1e-4;
-    for (int iter = 0; iter < 400 && step > opt_.tolerance; ++iter) {
+    for (int iter = 0; iter < 400 && step > opt_.tolerance && !exhausted(); ++iter) {
       bool better = false;
       for (const Eigen::VectorXd& e : dirs) {
         const Eigen::VectorXd v = project(u + step * e);
@@ -248,6 +263,7 @@ void checkOptions(const std::vector<std::pair<double, double>>& bounds, const Op
   }
   if (opt.periodic && bounds.size() != 1) throw Error("optimize: only a function of one variable can be periodic");
   if (!(opt.clusterRadius > 0) || !(opt.squashFactor > 0)) throw Error("optimize: cluster radii must be > 0");
+  if (opt.maxEvaluations <= 0) throw Error("optimize: maxEvaluations must be > 0");
 }
 
 // 1. Patching (3.4.1): g on a regular grid of n (x n) points of the unit box.
@@ -361,15 +377,25 @@ std::vector<int> startPoints(const Samples& s, const std::vector<int>& group, co
   return starts;
 }
 
+// A start and g there (NaN: not evaluated yet).
+using Start = std::pair<Eigen::VectorXd, double>;
+
 // 4. Quasi-Newton from every start (3.4.3), then a derivative-free polish; the
-// distinct local minima of g found, lowest first.
-std::vector<std::pair<Eigen::VectorXd, double>> descend(Problem& pb, const std::vector<Eigen::VectorXd>& from,
+// distinct local minima of g found, lowest first. Past the budget, the
+// sampled starts stand for themselves.
+
+std::vector<std::pair<Eigen::VectorXd, double>> descend(Problem& pb, const std::vector<Start>& from,
                                                         bool periodic) {
   std::vector<std::pair<Eigen::VectorXd, double>> found;
-  for (const Eigen::VectorXd& start : from) {
-    double gu;
-    Eigen::VectorXd u = pb.bfgs(start, gu);
-    u = pb.polish(u, gu);
+  for (const auto& [start, known] : from) {
+    double gu = known;
+    Eigen::VectorXd u = start;
+    if (pb.exhausted()) {  // out of budget: the start itself, as sampled
+      if (std::isnan(gu)) continue;
+    } else {
+      u = pb.bfgs(start, gu);
+      u = pb.polish(u, gu);
+    }
     if (!std::isfinite(gu)) continue;
     bool dup = false;
     for (auto& [v, gvv] : found) {
@@ -396,13 +422,13 @@ OptimizeResult optimize(const Objective& f, const std::vector<std::pair<double, 
   checkOptions(bounds, opt);
   Problem pb(f, bounds, goal, opt);
   const Samples samples(pb, opt);
-  std::vector<Eigen::VectorXd> from;
-  for (int s : startPoints(samples, valleyGroup(samples), opt)) from.push_back(samples.u(s));
+  std::vector<Start> from;
+  for (int s : startPoints(samples, valleyGroup(samples), opt)) from.emplace_back(samples.u(s), samples.g(s));
   for (const std::vector<double>& x : opt.starts) {
     if (static_cast<int>(x.size()) != pb.dims()) throw Error("optimize: a start point has the wrong dimension");
     Eigen::VectorXd u(pb.dims());
     for (int i = 0; i < pb.dims(); ++i) u[i] = (x[i] - bounds[i].first) / (bounds[i].second - bounds[i].first);
-    from.push_back(pb.project(u));
+    from.emplace_back(pb.project(u), kNaN);
   }
   OptimizeResult out;
   for (const auto& [u, gu] : descend(pb, from, opt.periodic)) out.locals.push_back({pb.toX(u), pb.sign() * gu});
@@ -411,6 +437,7 @@ OptimizeResult optimize(const Objective& f, const std::vector<std::pair<double, 
   out.x = out.locals.front().x;
   out.value = out.locals.front().value;
   out.evaluations = pb.evaluations();
+  out.converged = !pb.exhausted();
   return out;
 }
 

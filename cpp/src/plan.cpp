@@ -27,6 +27,7 @@
 #include "plunge/selection.hpp"
 #include "plunge/sequencing.hpp"
 #include "plunge/stock.hpp"
+#include "plunge/broken.hpp"
 #include "plunge/tools.hpp"
 #include "plunge/validate.hpp"
 
@@ -59,6 +60,8 @@ constexpr double kDepthCellFraction = 1e-3;
 constexpr double kHexCellArea = 2.598076211353316;
 // Coverage short of min_coverage by less than this is rounding, not worth a warning.
 constexpr double kCoverageSlack = 1e-3;
+// Wall stock over max_wall_stock by less than this is the polygons' arcs.
+constexpr double kWallStockSlack = 0.01;
 
 // The area of the core that neither the packed disks cut nor a tool of radius
 // r can reach (what smaller tools must cover).
@@ -118,7 +121,7 @@ CoverResult placePlunges(const PlanInput& in, const Region& region, const std::v
   if (in.packingOrder != PackingOrder::Auto) return packAndCover(in.packingOrder);
   auto lattice = std::async(std::launch::async, packAndCover, PackingOrder::Lattice);
   CoverResult cover = packAndCover(PackingOrder::HoleDegree);
-  CoverResult other = lattice.get();
+  CoverResult other = progress.await(lattice);
   if (other.disks.size() < cover.disks.size()) cover = std::move(other);
   return cover;
 }
@@ -139,11 +142,12 @@ std::vector<CutDisk> depthsOf(const PlanInput& in, const CoverResult& cover, con
 
 // Execution order: tools largest first, each tool's plunges as a short open path
 // starting nearest to where the previous tool ended.
-void sequence(const PlanInput& in, const std::vector<CutDisk>& disks, Plan& out) {
+void sequence(const PlanInput& in, const std::vector<CutDisk>& disks, Plan& out, const Progress& progress) {
   Vec2 at = in.start ? *in.start : in.boundary.front();
   TourOptions to;
   to.method = in.sequencing;
   to.seed = in.seed;
+  to.poll = [&progress] { progress.tick(); };
   for (size_t t = 0; t < in.tools.size(); ++t) {
     std::vector<const CutDisk*> mine;
     std::vector<Vec2> pts;
@@ -212,12 +216,13 @@ void floorStock(const PlanInput& in, const Region& region, const FloorSurface& f
   out.stats.volumeLeft = r.volumeLeft;
   if (sculptured && in.maxFloorStock > 0.0 && r.maxFloorStock > in.maxFloorStock + 1e-6) {
     std::ostringstream w;
-    // Plunges held at the final depth leave that stock by request, not for want of a tool.
     w << std::fixed << std::setprecision(2) << "up to " << r.maxFloorStock
-      << " mm of stock stay above the floor, more than the " << in.maxFloorStock << " mm asked for: "
-      << (held ? "the final depth stops plunges above the floor"
-               : "no plunger of the job reaches lower there (a smaller or ball-end tool would)");
-    out.warnings.push_back(w.str());
+      << " mm of stock stay above the floor, more than the " << in.maxFloorStock << " mm asked for";
+    // Plunges held at the final depth leave that stock by request, not for want of a tool.
+    sayBroken(out, w.str(),
+              {"max_floor_stock", in.maxFloorStock, r.maxFloorStock, r.maxFloorStockAt, 1,
+               held ? "the final depth stops plunges above the floor (a lower final depth would cut it)"
+                    : "no plunger of the job reaches lower there (a smaller or ball-end plunger would)"});
   }
   if (!sculptured) return;
   // The picture's map: at most about 160 x 160 cells, each the highest stock in it.
@@ -257,13 +262,42 @@ void countPlunges(const PlanInput& in, Plan& out) {
   for (const Tool& t : in.tools) {
     const int n = static_cast<int>(std::count_if(out.plunges.begin(), out.plunges.end(),
                                                  [&](const Plunge& p) { return p.toolId == t.id; }));
-    if (n > 0) out.stats.perTool.push_back({t.id, t.diameter, n});
+    if (n > 0) out.stats.perTool.push_back({t.id, t.diameter, n, peckDepthOf(t)});
   }
   out.stats.startHoles = static_cast<int>(
       std::count_if(out.plunges.begin(), out.plunges.end(), [](const Plunge& p) { return p.startHole; }));
   out.stats.plungeCount = static_cast<int>(out.plunges.size());
   out.stats.restPlunges = static_cast<int>(
       std::count_if(out.plunges.begin(), out.plunges.end(), [](const Plunge& p) { return p.rest && p.level == 0; }));
+}
+
+// The radius a plunge of `cutter` with its tip at z cuts at height `at`: all
+// of it for a flat one; a ball or bull nose only where its profile is below.
+double radiusCutAt(const Cutter& cutter, double z, double at) {
+  const double rise = at - z;
+  const double rc = cutter.shape == CutterShape::Ball ? cutter.radius
+                    : cutter.shape == CutterShape::Bull ? cutter.cornerRadius : 0.0;
+  if (rise >= rc) return cutter.radius;
+  if (rise <= 0) return cutter.radius - rc;
+  return cutter.radius - rc + std::sqrt(rc * rc - (rc - rise) * (rc - rise));
+}
+
+// Why the plunges leave stock at p near the walls: the smallest plunger does
+// not fit there (one as wide as the room at p would).
+std::string reachWhy(const Region& region, const PlanInput& in, Vec2 p) {
+  const double room = 2.0 * (region.wallDistance(p, 1e9) - in.radialAllowance);
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(2) << "no plunger of the job reaches there: the smallest ("
+    << in.tools.back().diameter << " mm) does not fit with the radial allowance (a plunger of " << room
+    << " mm or less would)";
+  return s.str();
+}
+
+// The stock no plunger of the job can reach: corners and gaps of the pocket
+// narrower than the smallest plunger (the allowed region less what it reaches).
+WallStock outOfReach(const Region& region, const PlanInput& in, const Polygons& accessible) {
+  const Polygons beyond = poly::subtract(allowedRegion(region, in.radialAllowance), accessible);
+  return wallStockLeft(region, beyond, {}, in.radialAllowance);
 }
 
 // Coverage, the core beyond the wall band and the wall stock, from what the
@@ -283,21 +317,65 @@ void coverageStats(const PlanInput& in, const Region& region, const CoverResult&
     coreLeft = cover.uncovered;
   }
   out.stats.coreCoverage = out.stats.coreArea > 0 ? 1.0 - poly::area(coreLeft) / out.stats.coreArea : 1.0;
-  out.stats.maxWallStockLeft = wallStockLeft(region, cover.uncovered, out.accessible, in.radialAllowance);
+  const WallStock wall = wallStockLeft(region, cover.uncovered, out.accessible, in.radialAllowance);
+  out.stats.maxWallStockLeft = wall.thickest;
   // Any strategy short of what was asked for says so: the grid's fixed spacing
   // usually is. Worded for users of every front end (no JSON key names).
   std::ostringstream w;
   w << std::fixed << std::setprecision(2);
+  const std::string grid = "a grid's fixed spacing cannot reach it (the packing strategy would)";
   if (in.maxWallStock > 0.0 && poly::area(coreLeft) > 0.01) {
     w << "the plunges leave " << poly::area(coreLeft) << " mm^2 farther than " << in.maxWallStock
       << " mm from the walls uncut (" << 100 * out.stats.coreCoverage << " % of it cut)";
-    if (in.strategy == Strategy::Grid) w << ": a grid's fixed spacing cannot reach it";
-    out.warnings.push_back(w.str());
+    const WallStock core = wallStockLeft(region, coreLeft, out.accessible, in.radialAllowance);
+    sayBroken(out, w.str(),
+              {"max_wall_stock", in.maxWallStock, std::max(core.thickest, wall.thickest), core.at, 1,
+               in.strategy == Strategy::Grid ? grid : "slivers between the plunges that no plunge of the plan cut"});
+  } else if (const WallStock corner = outOfReach(region, in, out.accessible);
+             in.maxWallStock > 0.0 && std::max(wall.thickest, corner.thickest) > in.maxWallStock + kWallStockSlack) {
+    const WallStock& worst = corner.thickest > wall.thickest ? corner : wall;
+    w << "up to " << worst.thickest << " mm of stock stay on the walls, more than the " << in.maxWallStock
+      << " mm asked for";
+    sayBroken(out, w.str(), {"max_wall_stock", in.maxWallStock, worst.thickest, worst.at, 1,
+                             corner.thickest > wall.thickest ? reachWhy(region, in, worst.at)
+                                                             : "slivers between the plunges along the walls"});
   } else if (in.maxWallStock <= 0.0 && out.stats.coverage < in.minCoverage - kCoverageSlack) {
     w << "the plunges clear " << 100 * out.stats.coverage << " % of the reachable floor, less than the "
-      << 100 * in.minCoverage << " % asked for: material stays along the walls";
-    if (in.strategy == Strategy::Grid) w << " (a grid's fixed spacing cannot reach it)";
-    out.warnings.push_back(w.str());
+      << 100 * in.minCoverage << " % asked for";
+    sayBroken(out, w.str(),
+              {"min_coverage", in.minCoverage, out.stats.coverage, wall.at, 1,
+               in.strategy == Strategy::Grid ? grid : "material stays along the walls between the plunges"});
+  }
+}
+
+// The wall band at each section's height, measured on the final plunges: what
+// of the section's core no plunge through that height cut, and what no
+// plunger can reach there, each said where it is thicker than the band.
+void wallBandAboveStats(const PlanInput& in, Plan& out) {
+  if (in.maxWallStock <= 0.0) return;
+  const ToolTable tools(in.tools);
+  for (const Section& s : in.sections) {
+    const double stop = s.z + in.floorAllowance;
+    const Region region(s.boundary, s.islands);
+    std::vector<Circle> through;
+    for (const Plunge& p : out.plunges) {
+      if (p.z > stop + 1e-9) continue;
+      const double r = radiusCutAt(cutterOf(tools.byId(p.toolId)), p.z, stop);
+      if (r > 0) through.push_back({{p.x, p.y}, r});
+    }
+    const Polygons accessible = accessibleRegion(region, 0.5 * in.tools.back().diameter, in.radialAllowance);
+    const Polygons left = uncoveredRegion(coreRegion(region, accessible, in.radialAllowance, in.maxWallStock), through);
+    const WallStock uncut = wallStockLeft(region, left, {}, in.radialAllowance);
+    const WallStock corner = outOfReach(region, in, accessible);
+    const WallStock& worst = corner.thickest > uncut.thickest ? corner : uncut;
+    if (worst.thickest <= in.maxWallStock + kWallStockSlack) continue;
+    std::ostringstream w;
+    w << std::fixed << std::setprecision(2) << "at " << s.z << " mm, above the floor, up to " << worst.thickest
+      << " mm of stock stay on the walls, more than the " << in.maxWallStock << " mm asked for";
+    sayBroken(out, w.str(),
+              {"max_wall_stock", in.maxWallStock, worst.thickest, worst.at, 1,
+               &worst == &corner ? reachWhy(region, in, worst.at)
+                                 : "no plunger of the job fits there down to that height"});
   }
 }
 
@@ -340,6 +418,56 @@ Pocket pocketOf(PlanInput& in, Plan& out) {
   return pocket;
 }
 
+// The wall band above the floor: where the pocket is wider at a height than
+// at its floor (sections: fillets and corner blends that are walls, drafted
+// walls), the plunges through that height are covered up to the section's
+// walls, as the floor's outline is: every point farther than the allowance
+// and the band from them is cut. The new plunges stop at the section's height
+// plus the floor allowance (higher where the floor under them is): the
+// section holds the disk and the allowance, and the walls do not overhang, so
+// nothing of the part is nearer below. Lowest section first: its plunges cut
+// through the higher ones too.
+void wallBandAbove(const PlanInput& in, const DepthSolver& depths, std::vector<CutDisk>& disks,
+                   const Progress& progress) {
+  if (in.maxWallStock <= 0.0 || in.sections.empty()) return;
+  std::vector<const Section*> order;
+  for (const Section& s : in.sections) order.push_back(&s);
+  std::stable_sort(order.begin(), order.end(), [](const Section* a, const Section* b) { return a->z < b->z; });
+  std::vector<double> radii;
+  for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
+  progress.stage(0.84, "the wall band above the floor");
+  for (const Section* s : order) {
+    const double stop = s->z + in.floorAllowance;
+    if (stop >= in.topZ) continue;
+    const Region region(s->boundary, s->islands);
+    std::vector<PackedDisk> through;  // what the plunges so far cut at this height
+    for (const CutDisk& d : disks) {
+      if (d.z > stop + 1e-9) continue;
+      const double r = radiusCutAt(cutterOf(in.tools[d.tool]), d.z, stop);
+      if (r > 0) through.push_back({d.center, r, r, d.tool});
+    }
+    CoveringOptions co;
+    co.allowance = in.radialAllowance;
+    co.wallStock = in.maxWallStock;
+    co.minCoverage = in.minCoverage;
+    co.progress = progress;
+    const CoverResult cover = coverRegion(region, radii, through, co);
+    for (size_t k = through.size(); k < cover.disks.size(); ++k) {
+      const CoverDisk& n = cover.disks[k];
+      double z = stop;
+      try {  // over the floor, no lower than the floor allows
+        z = std::max(z, depths.plungeHeight(n.center, cutterOf(in.tools[n.tool]), in.floorAllowance,
+                                            in.radialAllowance));
+      } catch (const Cancelled&) {
+        throw;
+      } catch (const Error&) {
+        // no floor under it: the section's height holds it
+      }
+      if (z < in.topZ) disks.push_back({n.center, n.tool, z});
+    }
+  }
+}
+
 // Plunge positions and their stop heights: packing and covering (or the grid),
 // the depth of each (4.4), the rest step in Z, then no plunge below final_depth
 // (held: whether that raised any plunge above the floor).
@@ -353,6 +481,7 @@ std::vector<CutDisk> placeAndDepth(const PlanInput& in, const Pocket& pocket, co
   progress.stage(0.75, "plunge depths");
   std::vector<CutDisk> disks = depthsOf(in, cover, depths, progress);
   restStep(in, pocket.region, floor, depths, disks, out, progress);
+  wallBandAbove(in, depths, disks, progress);
   held = false;
   if (in.finalDepth)
     for (CutDisk& d : disks) {
@@ -377,7 +506,7 @@ EngagementOptions engagementOptions(const PlanInput& in, const Progress& progres
   return o;
 }
 
-MotionOptions motionOptions(const PlanInput& in) {
+MotionOptions motionOptions(const PlanInput& in, const Progress& progress) {
   MotionOptions o;
   o.tools = ToolTable(in.tools);
   o.topZ = in.topZ;
@@ -388,7 +517,21 @@ MotionOptions motionOptions(const PlanInput& in) {
   o.stockAwareHeights = in.stockAwareHeights;
   o.rapidClearance = in.rapidClearance;
   o.timeModel = in.timeModel;
+  o.peck = in.peck;
+  o.peckDwell = in.peckDwell;
+  o.progress = progress;
   return o;
+}
+
+// Where the depth search ran out of budget, said (the plan stays gouge-free:
+// dense samples stand in, raised to bound the surface between them).
+void depthFallbacks(const DepthSolver& depths, Plan& out) {
+  out.stats.depthFallbacks = depths.peakFallbacks() + depths.depthFallbacks();
+  if (out.stats.depthFallbacks == 0) return;
+  out.warnings.push_back("the depth search ran out of its budget on " + std::to_string(out.stats.depthFallbacks) +
+                         " floor faces, edges or plunges: their depths come from a dense sample of the floor,"
+                         " raised by the rise between samples (a floor of many tiny or badly parametrised faces"
+                         " does this; a cleaner export of the floor avoids it)");
 }
 
 double secondsSince(std::chrono::steady_clock::time_point t0) {
@@ -420,13 +563,14 @@ Plan planWithTools(PlanInput in, const Progress& progress) {
   // The floor: flat, an expression or BREP faces (read before the long part).
   const std::unique_ptr<FloorSurface> floor = makeFloor(in);
   const Vec2 lo = pocket.region.minCorner(), hi = pocket.region.maxCorner();
-  const DepthSolver depths(*floor, lo, hi,
-                           std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)));
+  progress.stage(0.02, "analysing the floor");
+  const DepthSolver depths(*floor, lo, hi, std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)),
+                           progress);
   bool held = false;
   const std::vector<CutDisk> disks = placeAndDepth(in, pocket, *floor, depths, out, held, progress);
 
   progress.stage(0.9, "ordering the plunges");
-  sequence(in, disks, out);
+  sequence(in, disks, out, progress);
   // Real plunge mills: engagement limits and cores (positions and order grown
   // together), flute length (levels), then heights and lead-outs.
   const bool limited = std::any_of(in.tools.begin(), in.tools.end(),
@@ -436,13 +580,19 @@ Plan planWithTools(PlanInput in, const Progress& progress) {
     HeightField stock = stockOf(in.tools, in.topZ, pocket.region);
     out.plunges = growWithinLimits(pocket.region, depths, out.plunges, stock, engagementOptions(in, progress));
   }
-  const MotionOptions motion = motionOptions(in);
+  MotionOptions motion = motionOptions(in, progress);
   out.plunges = splitIntoLevels(out.plunges, motion, out.stats);
   // Measured on the final plunges (the rest step and the limits add to the covering's).
+  progress.stage(0.95, "measuring the coverage");
   coverageStats(in, pocket.region, coverOf(out, pocket.core), out);
+  wallBandAboveStats(in, out);
+  progress.stage(0.96, "heights and lead-outs");
+  motion.progress = progress.sub(0.96, 0.98);
   planMotion(pocket.region, depths, out, motion);
+  progress.stage(0.98, "measuring the stock left");
   floorStock(in, pocket.region, *floor, out, held, progress);
   countPlunges(in, out);
+  depthFallbacks(depths, out);
   out.stats.planningSeconds = secondsSince(t0);
   return out;
 }

@@ -27,6 +27,8 @@ constexpr int kNeighbours = 10;
 // stage shrink by (kAnnealFull / n)^2, which bounds the work (about as much as
 // kAnnealFull points take, 1-2 s), and a local search polishes the tour.
 constexpr int kAnnealFull = 1500;
+// Moves between calls of TourOptions::poll.
+constexpr long kPollEvery = 256;
 
 // The tour as an array with positions; an open path is a closed tour through an
 // extra "dummy" node whose edges cost nothing (or, when the path must begin at a
@@ -34,7 +36,8 @@ constexpr int kAnnealFull = 1500;
 // every tour pays exactly once).
 class Tsp {
  public:
-  Tsp(const std::vector<Vec2>& pts, bool open, int startNode) : pts_(pts), n_(static_cast<int>(pts.size())) {
+  Tsp(const std::vector<Vec2>& pts, bool open, int startNode, std::function<void()> poll)
+      : pts_(pts), n_(static_cast<int>(pts.size())), poll_(std::move(poll)) {
     m_ = open ? n_ + 1 : n_;
     dummy_ = open ? n_ : -1;
     start_ = startNode;
@@ -43,6 +46,10 @@ class Tsp {
     if (open && startNode >= 0) big_ = (norm(b.hi - b.lo) + 1.0) * (n_ + 1);
     eps_ = 1e-10 + kRelEps * (std::max(big_, norm(b.hi - b.lo)) + norm(b.hi) + norm(b.lo));
     buildNeighbours();
+  }
+
+  void poll() const {
+    if (poll_) poll_();
   }
 
   double d(int a, int b) const {
@@ -160,7 +167,8 @@ class Tsp {
   // Returns the length gained.
   double localSearch() {
     double gained = 0;
-    while (!queue_.empty()) {
+    for (long pops = 0; !queue_.empty(); ++pops) {
+      if (pops % kPollEvery == 0) poll();
       const int a = queue_.front();
       queue_.pop_front();
       queued_[a] = 0;
@@ -183,6 +191,7 @@ class Tsp {
     double bestLen = len;
     const int maxSeg = std::max(1, std::min(50, (m_ - 2) / 3));
     for (long long k = 0; k < kicks; ++k) {
+      if (k % 16 == 0) poll();
       len -= kick(rng, maxSeg);
       len -= localSearch();
       if (len < bestLen - 1e-9) {
@@ -239,6 +248,7 @@ class Tsp {
     while (temperature > 1e-5 * t0 && frozen < 3) {
       long long accepted = 0;
       for (long long k = 0; k < perStage; ++k) {
+        if (k % kPollEvery == 0) poll();
         int i, j;
         if (!randomMove(i, j)) continue;
         const double dE = delta(i, j);
@@ -402,6 +412,7 @@ class Tsp {
 
   const std::vector<Vec2>& pts_;
   int n_, m_, dummy_ = -1, start_ = -1;
+  std::function<void()> poll_;
   double big_ = 0;
   double eps_ = 0;  // a gain must exceed this (kRelEps)
   std::vector<std::vector<int>> nb_;
@@ -437,7 +448,8 @@ double tourLength(const std::vector<Vec2>& points, const std::vector<int>& order
   return len;
 }
 
-std::vector<int> shortenKeepingOrder(const std::vector<Vec2>& p, const std::function<bool(int, int)>& dependent) {
+std::vector<int> shortenKeepingOrder(const std::vector<Vec2>& p, const std::function<bool(int, int)>& dependent,
+                                     const std::function<void()>& poll) {
   constexpr int kMaxSegment = 3, kMaxPasses = 50;
   const int n = static_cast<int>(p.size());
   std::vector<int> order(n);
@@ -448,6 +460,7 @@ std::vector<int> shortenKeepingOrder(const std::vector<Vec2>& p, const std::func
     improved = false;
     for (int i = 1; i < n; ++i)
       for (int len = 1; len <= kMaxSegment && i + len <= n; ++len) {
+        if (poll && (i * kMaxSegment + len) % kPollEvery == 0) poll();
         // The run order[i .. i + len - 1], between prev and next.
         const int first = order[i], last = order[i + len - 1], prev = order[i - 1];
         const bool hasNext = i + len < n;
@@ -497,7 +510,7 @@ std::vector<int> tour(const std::vector<Vec2>& points, bool closed, std::optiona
     order = exhaustive(points, closed, closed ? -1 : startNode);
   } else {
     std::mt19937_64 rng(options.seed);
-    Tsp tsp(points, !closed, closed ? -1 : startNode);
+    Tsp tsp(points, !closed, closed ? -1 : startNode, options.poll);
     tsp.greedyEdge();
     if (options.method == TourMethod::Annealing) {
       if (tsp.anneal(rng)) {  // fewer moves than the thesis: polish

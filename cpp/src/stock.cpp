@@ -348,7 +348,10 @@ StockReport measureStock(const StockGrid& grid, double topZ) {
     if (std::isnan(s)) continue;
     r.volumeRemoved += std::max(0.0, topZ - std::max(grid.cutAt(k), grid.floorAt(k))) * cell;
     if (!grid.inCore(k)) continue;  // the wall band's material, not the floor's
-    r.maxFloorStock = std::max(r.maxFloorStock, s);
+    if (s > r.maxFloorStock) {
+      r.maxFloorStock = s;
+      r.maxFloorStockAt = grid.at(k);
+    }
     sum += std::max(0.0, s);
     ++n;
   }
@@ -357,8 +360,8 @@ StockReport measureStock(const StockGrid& grid, double topZ) {
   return r;
 }
 
-double wallStockLeft(const Region& region, const std::vector<Loop>& uncovered, const std::vector<Loop>& accessible,
-                     double radialAllowance, double sliver) {
+WallStock wallStockLeft(const Region& region, const std::vector<Loop>& uncovered, const std::vector<Loop>& accessible,
+                        double radialAllowance, double sliver) {
   // The accessible region's outline, indexed: a vertex on it is on a wall (no
   // stock) or on the arc of a corner the smallest tool cannot reach.
   std::vector<Segment> edges;
@@ -377,11 +380,14 @@ double wallStockLeft(const Region& region, const std::vector<Loop>& uncovered, c
   };
   const Vec2 lo = region.minCorner(), hi = region.maxCorner();
   const double far = 2.0 * dist(lo, hi);
-  double m = 0.0;
+  WallStock m;
   for (const Loop& L : uncovered) {
     if (std::fabs(signedArea(L)) < sliver) continue;
-    for (const Vec2& p : L)
-      if (!onAccessibleOutline(p)) m = std::max(m, region.wallDistance(p, far) - radialAllowance);
+    for (const Vec2& p : L) {
+      if (onAccessibleOutline(p)) continue;
+      const double d = region.wallDistance(p, far) - radialAllowance;
+      if (d > m.thickest) m = {d, p};
+    }
   }
   return m;
 }

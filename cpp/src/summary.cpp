@@ -18,6 +18,7 @@ std::string planSummary(const Plan& plan) {
     << std::setprecision(1) << st.volumeRemoved / 1000 << " cm3 removed, " << st.volumeLeft / 1000 << " cm3 left";
   if (st.restPlunges) s << "; " << st.restPlunges << " plunges added for the floor stock";
   if (st.startHoles) s << "; " << st.startHoles << " start holes";
+  if (st.peckedPlunges) s << "; " << st.peckedPlunges << " deep holes into solid pecked";
   if (st.levels > 1) s << "; " << st.levels << " levels (flute length)";
   if (const int without = st.noLeadOutMaterial + st.noLeadOutWalls; st.leadOuts + without > 0) {
     s << "; lead-outs on " << st.leadOuts << " plunges";

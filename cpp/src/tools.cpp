@@ -24,6 +24,8 @@ Plunge plungeOf(const Tool& t, Vec2 c, double z) {
 
 double coreRadius(const Tool& t) { return t.centerCutting ? 0.0 : 0.5 * t.coreDiameter; }
 
+double peckDepthOf(const Tool& t) { return t.peckDepth > 0.0 ? t.peckDepth : 3.0 * t.diameter; }
+
 double engagementLimit(const Tool& t) {
   double e = t.maxEngagement > 0.0 ? t.maxEngagement : std::numeric_limits<double>::infinity();
   if (!t.centerCutting) e = std::min(e, 0.5 * (t.diameter - t.coreDiameter));

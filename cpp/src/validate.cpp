@@ -10,6 +10,7 @@
 #include "plunge/error.hpp"
 #include "plunge/grid.hpp"
 #include "plunge/limits.hpp"
+#include "plunge/region.hpp"
 #include "plunge/tools.hpp"
 
 namespace plunge {
@@ -22,9 +23,11 @@ void requireFinite(double v, const std::string& what) {
 
 // A real plunge mill's limits (engagement.hpp, motion.hpp); 0 is no limit.
 void validateMill(const Tool& t, const std::string& name) {
-  for (double v : {t.maxEngagement, t.minEngagement, t.coreDiameter, t.fluteLength})
+  for (double v : {t.maxEngagement, t.minEngagement, t.coreDiameter, t.fluteLength, t.peckDepth})
     if (!std::isfinite(v) || v < 0.0)
-      throw Error(name + ": max_engagement, min_engagement, core_diameter and flute_length must be >= 0");
+      throw Error(name + ": max_engagement, min_engagement, core_diameter, flute_length and peck_depth must be >= 0");
+  if (t.peckDepth > 0.0 && t.peckDepth < 0.1 * t.diameter)
+    throw Error(name + ".peck_depth is below 10 % of the diameter: a hole would take too many pecks (is it in mm?)");
   if (t.maxEngagement > 0.0 && t.maxEngagement < 0.05 * t.diameter)
     throw Error(name + ".max_engagement is below 5 % of the diameter: too many plunges to plan (is it in mm?)");
   if (t.minEngagement >= t.diameter) throw Error(name + ".min_engagement must be below the diameter");
@@ -90,6 +93,16 @@ void validateHeights(const PlanInput& in) {
   } else if (in.floor.kind == Floor::Kind::Brep && in.floor.brep.empty()) {
     throw Error("floor.brep: no file name");
   }
+  for (size_t k = 0; k < in.sections.size(); ++k) {
+    const std::string name = "sections[" + std::to_string(k) + "]";
+    requireFinite(in.sections[k].z, name + ".z");
+    if (in.sections[k].z >= in.topZ) throw Error(name + ".z must be below top_z");
+    try {
+      const Region check(in.sections[k].boundary, in.sections[k].islands);
+    } catch (const Error& e) {
+      throw Error(name + ": " + e.what());
+    }
+  }
   if (in.finalDepth) {
     requireFinite(*in.finalDepth, "final_depth");
     if (*in.finalDepth + in.floorAllowance >= in.topZ)
@@ -121,6 +134,8 @@ void validateOptions(const PlanInput& in) {
   if (in.leadOut < 0.0) throw Error("lead_out must be >= 0 (0: retract straight up)");
   requireFinite(in.rapidClearance, "rapid_clearance");
   if (in.rapidClearance <= 0.0) throw Error("rapid_clearance must be > 0");
+  requireFinite(in.peckDwell, "peck_dwell");
+  if (in.peckDwell < 0.0) throw Error("peck_dwell must be >= 0 (seconds; 0: no dwell)");
   if (in.start) {
     requireFinite(in.start->x, "start.x");
     requireFinite(in.start->y, "start.y");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "plunge/cuts.hpp"
 #include "plunge/engagement.hpp"
 #include "plunge/error.hpp"
 #include "plunge/heightfield.hpp"
@@ -26,10 +27,12 @@ PlanInput pocket(double maxEngagement, bool centerCutting) {
   return in;
 }
 
-// The plan replayed on a fresh, finer height field: every plunge that is not a
-// start meets at most the limit, and a non-centre-cutting core only cut stock.
+// The plan replayed on a fresh, finer height field and on circles: every
+// plunge that is not a start meets at most the limit, and a non-centre-cutting
+// core only cut stock.
 void expectLimitsKept(const PlanInput& in, const Plan& p) {
   HeightField f({-15, -15}, {155, 105}, 0.2, 0.0);
+  Cuts cuts(kEngagementSkin);
   int starts = 0;
   for (const Plunge& q : p.plunges) {
     const Tool* t = nullptr;
@@ -41,12 +44,13 @@ void expectLimitsKept(const PlanInput& in, const Plan& p) {
     if (q.start) {
       ++starts;
     } else if (t->maxEngagement > 0) {
-      EXPECT_LE(k.engagement, t->maxEngagement + 0.5) << q.x << " " << q.y;
+      EXPECT_LE(cuts.engagement({q.x, q.y}, c, q.z), t->maxEngagement + 0.01) << q.x << " " << q.y;
     }
     if (!t->centerCutting) {
       EXPECT_TRUE(k.coreClear) << q.x << " " << q.y;
     }
     f.cut({q.x, q.y}, c, q.z);
+    cuts.add({q.x, q.y}, c, q.z);
   }
   EXPECT_GE(starts, 1);
   EXPECT_EQ(p.stats.overEngaged, 0);

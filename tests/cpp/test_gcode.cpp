@@ -36,6 +36,8 @@ static int parsesBack(const PlanInput& in, const Plan& p) {
   std::vector<Plunge> seen;
   std::vector<double> rapidHeights;  // z of each rapid across, before each plunge
   std::vector<int> changes;
+  bool inHole = false;  // since the last feed down, no move sideways: a feed down goes on with the hole
+  double dwell = 0;
   while (std::getline(g, line)) {
     if (line.empty() || line[0] == '(') continue;
     std::istringstream w(line);
@@ -52,7 +54,19 @@ static int parsesBack(const PlanInput& in, const Plan& p) {
     }
     const bool rapid = !codes.empty() && codes[0] == "G0", feed = !codes.empty() && codes[0] == "G1";
     if (rapid && (v.count('X') || v.count('Y'))) rapidHeights.push_back(z);
-    if (feed && v.count('Z') && !seen.empty() && v['Z'] > z) {
+    if (!codes.empty() && codes[0] == "G4") dwell = v['P'];
+    if ((rapid || feed) && (v.count('X') || v.count('Y'))) inHole = false;
+    if (rapid && v.count('Z') && inHole && !seen.empty() && v['Z'] < z) {
+      // Back into a pecked hole: to just above where the last peck stopped.
+      const Plunge& q = seen.back();
+      EXPECT_NEAR(z, q.approachZ, 1e-4) << "a peck clears the hole";
+      EXPECT_GT(v['Z'], q.z);
+      EXPECT_LE(v['Z'], q.z + in.rapidClearance + 1e-4);
+    }
+    if (feed && v.count('Z') && inHole && !seen.empty() && v['Z'] < seen.back().z) {
+      seen.back().pecks.push_back(seen.back().z);  // the stop before was a peck
+      seen.back().z = v['Z'];
+    } else if (feed && v.count('Z') && !seen.empty() && v['Z'] > z) {
       seen.back().leadOutZ = v['Z'];  // up before a raised lead-out
     } else if (feed && v.count('Z')) {
       EXPECT_TRUE(v.count('F'));
@@ -63,6 +77,7 @@ static int parsesBack(const PlanInput& in, const Plan& p) {
       q.approachZ = z;  // where the feed starts
       q.z = v['Z'];
       seen.push_back(q);
+      inHole = true;
     } else if (feed) {
       if (seen.empty()) {
         ADD_FAILURE() << "a feed sideways before any plunge";
@@ -86,6 +101,9 @@ static int parsesBack(const PlanInput& in, const Plan& p) {
     EXPECT_NEAR(seen[i].y, q.y, 1e-4);
     EXPECT_NEAR(seen[i].z, q.z, 1e-4);
     EXPECT_NEAR(seen[i].approachZ, q.approachZ, 1e-4);
+    EXPECT_EQ(seen[i].pecks.size(), q.pecks.size()) << i;
+    for (size_t k = 0; k < std::min(seen[i].pecks.size(), q.pecks.size()); ++k)
+      EXPECT_NEAR(seen[i].pecks[k], q.pecks[k], 1e-4);
     EXPECT_EQ(seen[i].toolId, q.toolId);
     EXPECT_EQ(seen[i].leadOut.has_value(), q.leadOut.has_value());
     if (q.leadOut && seen[i].leadOut) {
@@ -106,6 +124,9 @@ static int parsesBack(const PlanInput& in, const Plan& p) {
   }
   EXPECT_GT(leadOuts, 0);
   EXPECT_EQ(changes.size(), p.stats.perTool.size());
+  if (p.stats.peckedPlunges > 0) {
+    EXPECT_DOUBLE_EQ(dwell, in.peckDwell);
+  }
   return raised;
 }
 
@@ -124,4 +145,18 @@ TEST(Gcode, ParsesBackToThePlan) {
       EXPECT_GT(raised, 0);
     }
   }
+}
+
+// A 60 mm deep pocket: the 12 and 8 mm plungers' holes into solid go deeper
+// than three diameters and are pecked, in the program as planned (each peck
+// up out of the hole and back to just above it, a dwell at the bottom).
+TEST(Gcode, PecksDeepHolesAsPlanned) {
+  std::string j = test::smallJobJson();
+  auto swap = [&](const std::string& from, const std::string& to) { j.replace(j.find(from), from.size(), to); };
+  swap(R"("floor": {"z": -10})", R"("floor": {"z": -60}, "peck_dwell": 0.5)");
+  swap(R"({"diameter": 12, "id": 4}, {"diameter": 6})", R"({"diameter": 12, "id": 4}, {"diameter": 8})");
+  const PlanInput in = planInputFromJson(j);
+  const Plan p = plan(in);
+  EXPECT_GT(p.stats.peckedPlunges, 0);
+  parsesBack(in, p);
 }

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "plunge/heightfield.hpp"
 
 using namespace plunge;
@@ -10,27 +12,19 @@ const Cutter kFlat10{CutterShape::Flat, 5.0, 0.0};
 
 }  // namespace
 
-// A plunge beside a hole at centre distance s meets a crescent s wide.
-TEST(HeightField, CrescentBesideAHoleHasItsWidthAsEngagement) {
-  for (double s : {1.0, 2.5, 4.0, 7.0}) {
-    HeightField f({-20, -20}, {30, 20}, 0.1, 0.0);
-    f.cut({0, 0}, kFlat10, -10);
-    const HeightField::Contact k = f.contact({s, 0}, kFlat10, -10);
-    EXPECT_NEAR(k.engagement, s, 0.15) << s;
-    EXPECT_GT(k.materialCells, 0);
-  }
-}
-
-TEST(HeightField, SolidIsTheDiameterAndCutIsNothing) {
+// A plunge beside a hole meets material; into solid, nothing cut; into its
+// own hole, nothing; deeper by less than the skin nothing, by more all of it.
+TEST(HeightField, SolidBesideAHoleAndCutIsNothing) {
   HeightField f({-20, -20}, {20, 20}, 0.2, 0.0);
-  EXPECT_DOUBLE_EQ(f.contact({0, 0}, kFlat10, -10).engagement, 10.0);
+  EXPECT_TRUE(f.contact({0, 0}, kFlat10, -10).solid);
   f.cut({0, 0}, kFlat10, -10);
+  const HeightField::Contact beside = f.contact({3, 0}, kFlat10, -10);
+  EXPECT_GT(beside.materialCells, 0);
+  EXPECT_FALSE(beside.solid);
   const HeightField::Contact again = f.contact({0, 0}, kFlat10, -10);
   EXPECT_EQ(again.materialCells, 0);
-  EXPECT_DOUBLE_EQ(again.engagement, 0.0);
-  // Deeper by less than the skin: no material either; by more: all of it.
   EXPECT_EQ(f.contact({0, 0}, kFlat10, -10.4).materialCells, 0);
-  EXPECT_DOUBLE_EQ(f.contact({0, 0}, kFlat10, -11).engagement, 10.0);
+  EXPECT_TRUE(f.contact({0, 0}, kFlat10, -11).solid);
 }
 
 // The core of a non-centre-cutting tool is clear only over a hole at least as wide.

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <map>
 #include <memory>
+#include <string>
 
 #include "plunge/depth.hpp"
 #include "plunge/floor.hpp"
@@ -164,5 +166,109 @@ TEST(Motion, ALeadOutRisesOutOfTheStepsAround) {
       EXPECT_GE(plan.stats.noLeadOutMaterial, 1);
     }
     EXPECT_EQ(plan.stats.estimatedMinutes, motionMinutes(plan, o, false));
+  }
+}
+
+// Pecks where a plunge drills a deep hole into solid: its axis in uncut
+// material deeper than the tool's peck depth (three diameters unless given).
+// Replayed on a fresh height field: every such plunge is pecked, a peck at
+// most the peck depth below the material's top or the peck before, the last
+// short of the bottom; a plunge with its axis in a hole (a crescent beside
+// removed material) never is. Without pecking, none, and a shorter estimate.
+TEST(Motion, PecksDeepHolesIntoSolid) {
+  PlanInput in = pocket();
+  in.floor.z = -60;
+  in.tools = {{16, 1, 100}, {8, 2, 100}};
+  in.tools[1].peckDepth = 10;
+  for (bool limited : {false, true}) {
+    for (Tool& t : in.tools) t.maxEngagement = limited ? 0.25 * t.diameter : 0;
+    const Plan p = plan(in);
+    HeightField f({-15, -15}, {135, 95}, 0.1, in.topZ);
+    int pecked = 0, holes = 0;
+    for (const Plunge& q : p.plunges) {
+      const Tool& t = q.toolId == 1 ? in.tools[0] : in.tools[1];
+      const double peck = t.peckDepth > 0 ? t.peckDepth : 3 * t.diameter;
+      // Material (or none) within 0.5 mm all round the axis: the rasters agree.
+      double top = f.heightAt({q.x, q.y}), low = top;
+      for (Vec2 d : {Vec2{0.5, 0}, Vec2{-0.5, 0}, Vec2{0, 0.5}, Vec2{0, -0.5}}) {
+        top = std::max(top, f.heightAt(Vec2{q.x, q.y} + d));
+        low = std::min(low, f.heightAt(Vec2{q.x, q.y} + d));
+      }
+      const bool hole = low - q.z > peck + 0.2;
+      holes += hole;
+      if (top < q.z + 0.01) {
+        EXPECT_TRUE(q.pecks.empty()) << "a crescent";
+      }
+      if (hole) {
+        EXPECT_FALSE(q.pecks.empty()) << q.x << "," << q.y;
+      }
+      double above = f.heightAt({q.x, q.y});
+      for (double at : q.pecks) {
+        EXPECT_LE(above - at, peck + 1e-9);
+        EXPECT_GT(at, q.z);
+        above = at;
+      }
+      if (!q.pecks.empty()) {
+        EXPECT_LE(above - q.z, peck + 1e-9);
+      }
+      pecked += !q.pecks.empty();
+      f.cut({q.x, q.y}, cutterOf(t), q.z);
+      if (q.leadOut) f.cut(*q.leadOut, cutterOf(t), q.z);
+    }
+    EXPECT_GT(holes, 0) << limited;
+    EXPECT_EQ(pecked, p.stats.peckedPlunges);
+    PlanInput off = in;
+    off.peck = false;
+    const Plan none = plan(off);
+    EXPECT_EQ(none.stats.peckedPlunges, 0);
+    for (const Plunge& q : none.plunges) EXPECT_TRUE(q.pecks.empty());
+    EXPECT_LT(none.stats.estimatedMinutes, p.stats.estimatedMinutes);
+  }
+}
+
+// Every limit a plan breaks is said: which, the worst and where, and why; a
+// warning for people and a record for programs. Plunges made by hand, each
+// breaking one limit: a ridge left between two holes, cut across (the
+// engagement along one radius, most of it); a sliver thinner than the min
+// engagement; a non-centre-cutting tool into solid; a plunge deeper than its
+// flutes.
+TEST(Motion, SaysEveryLimitItBreaks) {
+  HandMadeBox box;
+  Tool t{20, 1, 150};
+  t.maxEngagement = 5;
+  t.minEngagement = 3;
+  t.fluteLength = 15;
+  Tool core{16, 2, 150};
+  core.centerCutting = false;
+  core.coreDiameter = 5;
+  box.o.tools = ToolTable({t, core});
+  Plan plan;
+  const Tool& a = box.o.tools.byId(1);
+  plan.plunges = {plungeOf(a, {18, 30}, -10), plungeOf(a, {40, 30}, -10),  // two holes: a ridge 2 mm wide
+                  plungeOf(a, {29, 30}, -10),                                // along it: its length, not its width
+                  plungeOf(a, {29, 31}, -10),                                // a sliver
+                  plungeOf(a, {70, 30}, -20),                                // 20 mm deep: the flutes are 15
+                  plungeOf(box.o.tools.byId(2), {70, 50}, -5)};              // a core onto solid
+  plan.plunges[0].start = plan.plunges[1].start = plan.plunges[4].start = true;
+  planMotion(box.region, box.depths, plan, box.o);
+  std::map<std::string, BrokenLimit> said;
+  for (const BrokenLimit& b : plan.broken) said[b.limit] = b;
+  ASSERT_EQ(said.count("max_engagement"), 1u);
+  EXPECT_NEAR(said["max_engagement"].at.x, 29, 1e-9);
+  EXPECT_GT(said["max_engagement"].worst, 9.0);  // the ridge's 2 mm width would have kept the limit
+  EXPECT_DOUBLE_EQ(said["max_engagement"].asked, 5);
+  ASSERT_EQ(said.count("min_engagement"), 1u);
+  EXPECT_NEAR(said["min_engagement"].at.y, 31, 1e-9);
+  EXPECT_LT(said["min_engagement"].worst, 3);
+  ASSERT_EQ(said.count("flute_length"), 1u);
+  EXPECT_NEAR(said["flute_length"].worst, 20, 0.5);
+  EXPECT_NEAR(said["flute_length"].at.x, 70, 1e-9);
+  ASSERT_EQ(said.count("core_diameter"), 1u);
+  EXPECT_NEAR(said["core_diameter"].at.y, 50, 1e-9);
+  EXPECT_EQ(plan.warnings.size(), plan.broken.size());
+  for (size_t i = 0; i < plan.broken.size(); ++i) {
+    EXPECT_FALSE(plan.broken[i].why.empty());
+    EXPECT_NE(plan.warnings[i].find("the worst at ("), std::string::npos) << plan.warnings[i];
+    EXPECT_NE(plan.warnings[i].find(plan.broken[i].why), std::string::npos);
   }
 }

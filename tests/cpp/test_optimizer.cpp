@@ -134,3 +134,39 @@ TEST(Optimizer, SubtractiveClusteringFindsSeparateBlobs) {
   ASSERT_EQ(c.size(), 2u);
   EXPECT_NE(c[0] < 30, c[1] < 30);  // one centre per blob
 }
+
+// Every iteration is bounded and never leaves the finite numbers: f is never
+// called at a non-finite point (OpenCASCADE's face classifier does not return
+// from one), the budget stops the search, and poll is called along the way.
+TEST(Optimizer, BoundedAndFinite) {
+  // A narrow finite domain against the box's faces, steep inside: finite
+  // differences at the faces once made BFGS step to NaN.
+  long calls = 0, polls = 0;
+  bool nonFinite = false;
+  auto f = [&](const double* x) {
+    ++calls;
+    if (!std::isfinite(x[0]) || !std::isfinite(x[1])) nonFinite = true;
+    if (x[1] > 1.4 - 0.3 * x[0]) return std::nan("");
+    return 1e9 * std::sin(40 * x[0]) * x[1] * x[1] + x[0];
+  };
+  OptimizeOptions o;
+  o.skipNonFinite = true;
+  o.poll = [&] { ++polls; };
+  const OptimizeResult all = optimize(f, {{3.25, 4.71}, {0.0, 1.43}}, Goal::Maximize, o);
+  EXPECT_FALSE(nonFinite);
+  EXPECT_EQ(all.evaluations, calls);
+  EXPECT_GE(polls, calls / 64);
+  o.maxEvaluations = 3000;
+  calls = 0;
+  const OptimizeResult cut = optimize(f, {{3.25, 4.71}, {0.0, 1.43}}, Goal::Maximize, o);
+  EXPECT_FALSE(cut.converged);
+  EXPECT_LE(calls, 3000 + 8);  // the last step's few evaluations
+  EXPECT_FALSE(cut.locals.empty());
+  EXPECT_TRUE(all.converged || all.evaluations >= OptimizeOptions{}.maxEvaluations);
+  // A poll that throws (a cancel) stops the search.
+  o.poll = [] { throw std::runtime_error("cancel"); };
+  EXPECT_THROW(optimize(f, {{3.25, 4.71}, {0.0, 1.43}}, Goal::Maximize, o), std::runtime_error);
+  o.poll = nullptr;
+  o.maxEvaluations = 0;
+  EXPECT_THROW(optimize(f, {{3.25, 4.71}, {0.0, 1.43}}, Goal::Maximize, o), Error);
+}

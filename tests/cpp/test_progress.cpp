@@ -117,3 +117,39 @@ TEST(Progress, ToolSelectionStaysInRange) {
   for (size_t i = 1; i < seen.fractions.size(); ++i) EXPECT_GE(seen.fractions[i], seen.fractions[i - 1] - 1e-12);
   EXPECT_LE(seen.fractions.back(), 1.0);
 }
+
+// Cancel anywhere: a plan cancelled at the first report inside each stage it
+// goes through (a tick of its work, or the stage's own report where it has
+// none) stops there with Cancelled, and reports nothing after the "no".
+TEST(Progress, CancelsInEveryStage) {
+  PlanInput in = shape("islands");
+  in.floor.kind = Floor::Kind::Expression;
+  in.floor.expression = "-20 + 2*sin(x/9)*cos(y/7)";
+  for (Tool& t : in.tools) t.maxEngagement = 0.25 * t.diameter;
+  Seen all;
+  plan(in, recorder(all));
+  std::vector<std::string> stages;
+  for (const std::string& s : all.stages)
+    if (std::find(stages.begin(), stages.end(), s) == stages.end()) stages.push_back(s);
+  for (const char* s : {"analysing the floor", "packing and covering", "plunge depths", "ordering the plunges",
+                        "growing the cut within the engagement limits", "heights and lead-outs",
+                        "measuring the stock left"})
+    EXPECT_NE(std::find(stages.begin(), stages.end(), s), stages.end()) << s;
+  for (const std::string& stage : stages) {
+    int seenInStage = 0, inStage = 0, after = 0;
+    bool said = false;
+    for (const std::string& s : all.stages) inStage += s == stage;
+    Progress progress(
+        [&](double, const std::string& s) {
+          if (said) ++after;
+          if (s != stage) return true;
+          // The second report of the stage is a tick from its work, if it has one.
+          said = ++seenInStage == std::min(inStage, 2);
+          return !said;
+        },
+        std::chrono::milliseconds(0));
+    EXPECT_THROW(plan(in, progress), Cancelled) << stage;
+    EXPECT_TRUE(said) << stage;
+    EXPECT_EQ(after, 0) << stage;
+  }
+}

@@ -7,7 +7,11 @@ from machine_check import parse as parse_gcode  # noqa: E402,F401
 def replay(blocks, safe_z):
     """Plunges [(tool, x, y, z)] and rapids that crossed below safe_z, from G-code blocks.
 
-    Understands G0/G1 (modal), G81/G83 with G98 (return to the initial level) and T/M6."""
+    Understands G0/G1 (modal), G81/G83 with G98 (return to the initial level) and T/M6.
+    A feed down at the X Y of the last plunge with no move sideways since (a
+    pecked hole after clearing its chips) goes on with that plunge: its z is
+    the deepest."""
+    in_hole = False
     tool = None
     pending = None
     x = y = z = None
@@ -15,6 +19,8 @@ def replay(blocks, safe_z):
     plunges, low_rapids = [], []
     canned = None
     for codes, w in blocks:
+        if "M6" in codes:
+            in_hole = False
         if "M6" in codes and "T" in w:
             tool = int(w["T"])
         elif "T" in w and not codes:
@@ -29,13 +35,19 @@ def replay(blocks, safe_z):
         if not any(k in w for k in "XYZ"):
             continue
         nx, ny, nz = w.get("X", x), w.get("Y", y), w.get("Z", z)
+        if (nx, ny) != (x, y):
+            in_hole = False
         if motion == "G0":
             if (nx, ny) != (x, y) and z is not None and z < safe_z - 1e-6:
                 low_rapids.append((x, y, z, nx, ny))
             x, y, z = nx, ny, nz
         elif motion == "G1":
             if nz is not None and z is not None and nz < z and (nx, ny) == (x, y):
-                plunges.append((tool, nx, ny, nz))
+                if in_hole and plunges and plunges[-1][1:3] == (nx, ny) and nz < plunges[-1][3]:
+                    plunges[-1] = (tool, nx, ny, nz)
+                else:
+                    plunges.append((tool, nx, ny, nz))
+                in_hole = True
             x, y, z = nx, ny, nz
         elif motion in ("G81", "G82", "G83"):
             if canned is None:

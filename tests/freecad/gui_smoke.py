@@ -106,6 +106,66 @@ def watch_dialogs():
         w.close()
 
 
+def cancel_a_long_plan(doc, op, plan_before):
+    """The user recomputes (Ctrl+R, Std_Refresh) a plan of several seconds,
+    presses Esc while it plans and answers Yes to FreeCAD's "abort?" box: the
+    plan stops within a second of that Yes, the operation says so in the
+    report view and cuts nothing, and the next recompute plans as before."""
+    from freecad_plugin import companions
+    times = {}
+
+    def escape():
+        times["esc"] = time.time()
+        target = QtGui.QApplication.focusWidget() or FreeCADGui.getMainWindow()
+        for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
+            QtGui.QApplication.postEvent(target, QtGui.QKeyEvent(kind, QtCore.Qt.Key_Escape, QtCore.Qt.NoModifier))
+
+    def yes():
+        box = QtGui.QApplication.activeModalWidget()
+        if isinstance(box, QtGui.QMessageBox) and box.isVisible() and "yes" not in times:
+            button = box.button(QtGui.QMessageBox.Yes)
+            if button is not None:
+                times["yes"] = time.time()
+                times["box"] = box.windowTitle()
+                button.click()  # at once: PySide6 never runs a click deferred from here
+
+    poll = QtCore.QTimer()
+    poll.timeout.connect(yes)
+    poll.start(100)
+    answer["busy"] = True  # watch_dialogs leaves the abort box to this step
+    try:
+        op.touch()
+        QtCore.QTimer.singleShot(2500, escape)
+        start = time.time()
+        FreeCADGui.runCommand("Std_Refresh")
+        times["end"] = time.time()
+    finally:
+        poll.stop()
+        answer["busy"] = False
+    cut = [c for o in [op] + companions.companions(op) for c in o.Path.Commands if c.Name in ("G1", "G81", "G83")]
+    result["cancel"] = {
+        "planning": times["end"] - start,
+        "esc_to_end": times["end"] - times.get("esc", times["end"]),
+        "yes_to_end": times["end"] - times["yes"] if "yes" in times else None,
+        "box": times.get("box"),
+        "summary": op.Summary,
+        "cut": len(cut),
+        "companions_active": [c.Active for c in companions.companions(op)],
+        "said": any("planning cancelled" in text for text, _ in report_lines()),
+    }
+    step("example: a long plan cancelled")
+    doc.recompute()
+    result["cancel"]["planned_again"] = PlungeRough_plan(op) == plan_before
+    result["cancel"]["companions_active_again"] = [c.Active for c in companions.companions(op)]
+    step("example: planned again after the cancel")
+
+
+def PlungeRough_plan(op):
+    from freecad_plugin import PlungeRough
+    plan = PlungeRough.plan_of(op)
+    return plan["plunges"] if plan else None
+
+
 def wait(seconds, done=lambda: False):
     end = time.time() + seconds
     while time.time() < end and not done():
@@ -320,6 +380,7 @@ def example_document():
         "same_plan": PlungeRough.plan_of(op)["plunges"] == plan_before,
         "operations": [o.Name for o in job.Operations.Group] == [op.Name] + [c.Name for c in comps]}
     step("example: panel and cancel")
+    cancel_a_long_plan(doc, op, plan_before)
 
     # The voxel simulator's own panel, fast-forwarded to the end.
     name = compat.voxel_simulator_command()

@@ -38,6 +38,25 @@ def test_plan_moves_with_lead_outs():
     assert feeds == [(None, None, -5), (1.5, 2, -5), (None, None, -6), (None, None, -5.6), (3, 4.5, -5.6)]
 
 
+def test_pecked_holes_clear_their_chips():
+    """A pecked plunge: down to each peck, up out of the hole (its approach
+    height), back to the clearance above the peck, on to z; a dwell at the
+    bottom of pecked holes only."""
+    plunges = [{"x": 1, "y": 2, "z": -50, "approach_z": 1, "retract_z": 2, "pecks": [-20, -40]},
+               {"x": 3, "y": 4, "z": -50, "approach_z": 1, "retract_z": 2}]
+    cmds = generator.generate(plunges, clearance_height=10, safe_height=5, rapid_clearance=1.0, dwell=0.5)
+    moves = [(c.Name, z) for c, _, z in heights(cmds)]
+    first = moves.index(("G1", -20))
+    assert moves[first:first + 8] == [("G1", -20), ("G0", 1), ("G0", -19), ("G1", -40), ("G0", 1), ("G0", -39),
+                                      ("G1", -50), ("G4", -50)]
+    assert [c.Parameters["P"] for c in cmds if c.Name == "G4"] == [0.5]  # the second plunge is one stroke
+    # In a canned cycle the pecked plunge is a G83 by the tool's peck depth, the other a G81.
+    cycles = [c for c in generator.generate(plunges, 10, 5, canned_cycle=True, peck_depth=20) if c.Name in ("G81", "G83")]
+    assert [c.Name for c in cycles] == ["G83", "G81"] and cycles[0].Parameters["Q"] == 20
+    with pytest.raises(ValueError, match="dwell"):
+        generator.generate(plunges, 10, 5, dwell=-1)
+
+
 @pytest.mark.parametrize("peck,cycle", [(0.0, "G81"), (2.0, "G83")])
 def test_canned_cycles(peck, cycle):
     cmds = generator.generate([(1, 2, -5), (3, 4, -6)], 10, 5, canned_cycle=True, peck_depth=peck)

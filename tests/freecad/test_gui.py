@@ -107,6 +107,19 @@ def test_example_document_is_a_gui_document(result):
     assert ex["panel"] and ex["after_cancel"] == {"same_plan": True, "operations": True}
 
 
+def test_a_long_plan_cancels_within_a_second(result):
+    """Esc while the example plans (several seconds), Yes in FreeCAD's abort
+    box: the plan stops within a second of the Yes, says so in the report view,
+    cuts nothing (its companions out of the program), and the next recompute
+    plans the same plan again, companions back in."""
+    c = result["cancel"]
+    assert c["box"] == "Aborting", c
+    assert c["yes_to_end"] is not None and c["yes_to_end"] < 1.0, c
+    assert c["summary"].startswith("planning cancelled") and c["said"], c
+    assert c["cut"] == 0 and not any(c["companions_active"]), c
+    assert c["planned_again"] and all(c["companions_active_again"]), c
+
+
 def test_example_simulates_as_a_cleared_pocket(result):
     """The voxel simulator's own panel, run to the end with the tool controllers'
     own tools: under every probed plunge the stock is cut to the plan's depth."""

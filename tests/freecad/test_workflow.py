@@ -164,5 +164,10 @@ def test_planning_reports_progress_and_can_be_aborted(doc, monkeypatch):
     op.touch()
     doc.recompute()
     assert calls[0].startswith(op.Label + ": checking the pocket") and calls[-1] == "stop"
-    assert op.Summary == "planning cancelled"
+    assert op.Summary.startswith("planning cancelled")
     assert not [c for c in op.Path.Commands if c.Name in ("G1", "G81", "G83")]
+    # The operation waits for the next recompute, which plans it again.
+    assert "Touched" in op.State
+    monkeypatch.undo()
+    doc.recompute()
+    assert PlungeRough.plan_of(op) and [c for c in op.Path.Commands if c.Name == "G1"]

@@ -11,9 +11,9 @@ measures what the tool meets in the stock the moves before it left, and checks
 
 Definitions (the same as the planner's, docs/plan-format.md "Real plunge mills"):
 material under a plunge is stock more than SKIN above the tool's cutting
-surface; the engagement is the largest distance from a material cell of the
-disk to the nearest cell of the disk without material (the diameter into
-solid). A plunge is a start, exempt from the engagement limits, when its disk
+surface; the engagement is the most material along any one radius of the tool
+(its radius into solid), sampled on this checker's raster (the exact measure
+on polygon stock is engagement_check.py's). A plunge is a start, exempt from the engagement limits, when its disk
 holds no cut cell at all (into solid), when all cut cells lie near its centre
 (onto a pre-drilled hole), or for a non-centre-cutting tool at a point where a
 start hole was drilled before.
@@ -22,7 +22,6 @@ import math
 import re
 
 import numpy as np
-from scipy import ndimage
 from shapely.geometry import LineString, Point, Polygon
 
 SKIN = 0.5
@@ -100,7 +99,7 @@ class Check:
         self.holes = []  # (x, y) of plunges by centre-cutting tools into solid: start holes
         self.report = {"plunges": 0, "over_engaged": [], "thin": [], "core_on_material": [], "too_deep": [],
                        "rapid_through_stock": [], "gouges": [], "lead_outs": 0, "lead_out_into_material": [],
-                       "max_engagement": {}, "starts": 0}
+                       "max_engagement": {}, "starts": 0, "pecks": 0}
 
     # -- the height field ------------------------------------------------------
     def window(self, x, y, reach):
@@ -154,10 +153,7 @@ class Check:
         free = disk & ~material
         where = (round(x, 3), round(y, 3), round(z, 3), tool_id)
         if material.any():
-            if not free.any():
-                engagement = 2 * r
-            else:
-                engagement = min(2 * r, float(ndimage.distance_transform_edt(~free)[material].max()) * self.h)
+            engagement = r if not free.any() else self.along_radii(sy, sx, x, y, z, tool)
             flute = tool.get("flute_length")
             if flute and float((self.z[sy, sx] - z)[disk & (above > 0)].max()) > flute + 1e-6:
                 rep["too_deep"].append(where)
@@ -182,6 +178,25 @@ class Check:
         elif material.any() and material[np.unravel_index(np.argmin(np.where(disk, rho, np.inf)), rho.shape)]:
             self.holes.append((x, y))  # its centre cut solid: a start hole for others
         self.cut(tool, x, y, z)
+
+    def peck_on(self, tool_id, x, y, z):
+        """A pecked hole goes on down after clearing its chips: the same plunge."""
+        tool = self.tools[tool_id]
+        self.report["pecks"] += 1
+        self.no_gouge(tool, x, y, z, "plunge")
+        self.cut(tool, x, y, z)
+
+    def along_radii(self, sy, sx, x, y, z, tool):
+        """The most material along one radius: 720 radii, each sampled every
+        half cell on the raster."""
+        r = tool["diameter"] / 2
+        a = np.linspace(0, 2 * np.pi, 720, endpoint=False)[:, None]
+        t = (np.arange(max(8, int(np.ceil(2 * r / self.h)))) + 0.5) * (r / max(8, int(np.ceil(2 * r / self.h))))
+        px, py = x + np.cos(a) * t, y + np.sin(a) * t
+        i = np.clip(np.floor((px - self.lo[0]) / self.h).astype(int), 0, self.n[0] - 1)
+        j = np.clip(np.floor((py - self.lo[1]) / self.h).astype(int), 0, self.n[1] - 1)
+        above = self.z[j, i] - (z + profile(tool, np.broadcast_to(t, px.shape)))
+        return float(((above > SKIN).sum(axis=1) * (r / len(t))).max())
 
     def no_gouge(self, tool, x, y, z, what):
         r = tool["diameter"] / 2
@@ -231,15 +246,19 @@ class Check:
             self.report["rapid_through_stock"].append((a, b, round(za, 3), round(zb, 3)))
 
     def run(self, text):
-        """Replays G0/G1 (modal), G81/G83 (G98/G99) and tool changes (T.. M6 or M6 T..)."""
+        """Replays G0/G1 (modal), G81/G83 (G98/G99) and tool changes (T.. M6 or M6 T..); a
+        feed down at the X Y of the last plunge, with no move sideways since, goes on
+        with that plunge (the next peck of a pecked hole)."""
         tool = None
         x = y = None
         z = None
         motion = None
         retract_mode = "G98"
+        in_hole = False  # a feed down since the last move sideways: a further one is the next peck
         for codes, w in parse(text):
             if "M6" in codes and "T" in w:
                 tool = int(w["T"])
+                in_hole = False
             for c in codes:
                 if c in ("G0", "G1", "G81", "G82", "G83"):
                     motion = c
@@ -260,10 +279,15 @@ class Check:
             if x is None or y is None or z is None:
                 x, y, z = nx, ny, nz
                 continue
+            if (nx, ny) != (x, y):
+                in_hole = False
             if motion == "G0":
                 self.rapid(tool, (x, y), (nx, ny), z, nz)
+            elif (nx, ny) == (x, y) and nz < z and in_hole:
+                self.peck_on(tool, nx, ny, nz)
             elif (nx, ny) == (x, y) and nz < z:
                 self.plunge(tool, nx, ny, nz)
+                in_hole = True
             elif (nx, ny) != (x, y) and nz == z:
                 self.lead_out(tool, (x, y), (nx, ny), z)
             x, y, z = nx, ny, nz

@@ -48,9 +48,10 @@ def test_plans_every_shape(cli, tmp_path, name):
     root = ET.parse(svg).getroot()
     circles = root.findall("{http://www.w3.org/2000/svg}circle")
     assert len(circles) == len(plan["plunges"]) + len(stats["per_tool"])
-    # The G-code: one feed move down per plunge, one across per lead-out.
+    # The G-code: one feed move down per plunge and per peck, one across per lead-out.
     feeds = [line for line in nc.read_text().splitlines() if line.startswith("G1 ")]
-    assert len([f for f in feeds if " Z" in f]) == len(plan["plunges"])
+    assert len([f for f in feeds if " Z" in f]) == len(plan["plunges"]) + sum(len(p.get("pecks", []))
+                                                                            for p in plan["plunges"])
     assert len([f for f in feeds if " Z" not in f]) == len([p for p in plan["plunges"] if "lead_out" in p])
 
 

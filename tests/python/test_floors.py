@@ -56,15 +56,16 @@ def test_ball_and_bull_tools(plunge):
     plan = plunge.plan(data)
     m = 0.05
     k = math.sqrt(1 + m * m)
+    a = 0.3  # the floor allowance, kept normal to the floor: the tool grown by it drops onto the plane
     for p in plan["plunges"]:
         r = p["diameter"] / 2
         if p["tool_id"] == 1:    # ball: the analytic drop onto a plane
-            expect = -20 + m * p["x"] + r * (k - 1)
+            expect = -20 + m * p["x"] + (r + a) * (k - 1)
         elif p["tool_id"] == 2:  # bull nose, corner radius 2
-            expect = -20 + m * (p["x"] + r - 2) + 2 * (k - 1)
-        else:
-            expect = -20 + m * (p["x"] + r)
-        assert abs(p["z"] - (expect + 0.3)) < 1e-6, p
+            expect = -20 + m * (p["x"] + r - 2) + (2 + a) * (k - 1)
+        else:                    # flat: a bull nose of corner radius a
+            expect = -20 + m * (p["x"] + r) + a * (k - 1)
+        assert abs(p["z"] - (expect + a)) < 1e-6, p
 
 
 def test_brep_floor_through_the_cli(cli, tmp_path):

@@ -143,7 +143,10 @@ def test_sculptured_limited_plans_lead_out_raised_out_of_the_steps(cli, tmp_path
     raised = [p for p in plunges if "lead_out_z" in p]
     assert stats["raised_lead_outs"] == len(raised) > 0
     assert all(0 < p["lead_out_z"] - p["z"] <= data.get("lead_out", 0.5) for p in raised)
-    assert stats["lead_outs"] >= 0.9 * len(plunges), (stats["lead_outs"], len(plunges))
+    # (0.88 at 0.5 D since the floor allowance is kept normal to the floor: on
+    # slopes the stops are higher, and more plunges sit in steps deeper than
+    # the lead-out is long, 0.91 before.)
+    assert stats["lead_outs"] >= 0.85 * len(plunges), (stats["lead_outs"], len(plunges))
     report = check_program(data, data["tools"], gcode)
     assert report["lead_outs"] == stats["lead_outs"]
     for key in ("gouges", "rapid_through_stock", "lead_out_into_material", "too_deep"):

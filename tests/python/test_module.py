@@ -37,7 +37,7 @@ def test_plan_contract(plunge):
         assert {"x", "y", "diameter", "tool_id", "z", "approach_z", "retract_z", "engagement", "level", "start",
                 "start_hole"} <= set(p) <= {"x", "y", "diameter", "tool_id", "z", "approach_z", "retract_z",
                                             "engagement", "level", "start", "start_hole", "lead_out",
-                                            "lead_out_z"}
+                                            "lead_out_z", "pecks"}
     assert_no_gouge(data, plan)
     assert max(core_left(data, plan, 1.0), default=0.0) < 0.01  # the default wall band
     assert plunge.plan(data)["plunges"] == plan["plunges"]  # deterministic

@@ -216,6 +216,10 @@ def test_times_are_the_plans_moves(planned):
             approach = safe if at_safe else p["approach_z"]
             up = safe if at_safe else p["retract_z"]
             total += max(0.0, z - approach) / retract + (approach - p["z"]) / feed[p["tool_id"]]
+            # A pecked hole: up out of it and back to rapid_clearance above each peck.
+            clearance = data.get("rapid_clearance", 1.0)
+            total += sum(2 * (approach - at) - clearance for at in p.get("pecks", [])) / retract
+            total += data.get("peck_dwell", 0.0) / 60.0 if p.get("pecks") else 0.0
             if "lead_out" in p:
                 rise = p.get("lead_out_z", p["z"]) - p["z"]
                 total += (rise + math.hypot(p["lead_out"][0] - p["x"], p["lead_out"][1] - p["y"])) / feed[p["tool_id"]]

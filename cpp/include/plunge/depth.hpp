@@ -9,10 +9,13 @@
 // plungers (drop-cutter) maximise floor height minus the tool's profile over
 // the disk, started from the grid and from the floor's peaks.
 #pragma once
+#include <atomic>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "plunge/floor.hpp"
+#include "plunge/progress.hpp"
 #include "plunge/types.hpp"
 
 namespace plunge {
@@ -22,12 +25,14 @@ double cutterProfile(const Cutter& cutter, double rho);
 
 class DepthSolver {
  public:
-  // Finds the floor's peaks over [lo, hi], resolving features down to `spacing`.
-  DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spacing);
+  // Finds the floor's peaks over [lo, hi], resolving features down to `spacing`
+  // (ticking `progress`, which may cancel).
+  DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spacing, const Progress& progress = {});
   // The same solver over another instance of the same floor (a clone, for
   // another thread): the peaks are not searched again.
   DepthSolver(const FloorSurface& floor, const DepthSolver& like)
-      : floor_(floor), spacing_(like.spacing_), peaks_(like.peaks_) {}
+      : floor_(floor), spacing_(like.spacing_), peaks_(like.peaks_), peakFallbacks_(like.peakFallbacks_),
+        depthFallbacks_(like.depthFallbacks_) {}
   // Tip height at which the cutter at `center` first touches the floor (no allowance).
   // Throws plunge::Error when no floor is under the cutter.
   double stopHeight(Vec2 center, const Cutter& cutter) const;
@@ -40,16 +45,29 @@ class DepthSolver {
   double plungeHeight(Vec2 center, const Cutter& cutter, double floorAllowance, double radialAllowance) const;
   const std::vector<Vec3>& peaks() const { return peaks_; }
   const FloorSurface& floor() const { return floor_; }
+  // Where the optimizer ran out of its (generous) budget and a dense sample
+  // stood in: faces or edges of the peak search, and plunge depths so far.
+  int peakFallbacks() const { return peakFallbacks_; }
+  int depthFallbacks() const { return *depthFallbacks_; }
 
  private:
+  double searchedStopHeight(Vec2 center, const Cutter& cutter, bool& converged) const;
   const FloorSurface& floor_;
   double spacing_;
   std::vector<Vec3> peaks_;
+  int peakFallbacks_ = 0;
+  // Shared by the solvers of every thread (the constructor above).
+  std::shared_ptr<std::atomic<int>> depthFallbacks_ = std::make_shared<std::atomic<int>>(0);
 };
 
 // The cutter widened by `by` at every height: a flat one wider, a ball or bull
 // nose with a flat of `by` more at its centre.
 Cutter grownSideways(const Cutter& cutter, double by);
+
+// The cutter offset by `by` in every direction (its Minkowski sum with a ball),
+// its tip `by` lower: a flat one a bull nose with corners of radius `by`, a
+// bull nose's corners and a ball `by` larger.
+Cutter grownAround(const Cutter& cutter, double by);
 
 // Reference: dense sampling of the disk every `spacing`, then a local
 // derivative-free refinement of the best samples. Slow; for tests and benchmarks.

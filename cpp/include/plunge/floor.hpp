@@ -7,11 +7,21 @@
 #include <vector>
 
 #include "plunge/geometry.hpp"
+#include "plunge/progress.hpp"
 
 namespace plunge {
 
 struct Vec3 {
   double x = 0, y = 0, z = 0;
+};
+
+// The candidates for the floor's local maxima, and how many faces or edges
+// the optimizer could not settle within its budget: their candidates are a
+// dense sample instead, each raised by its largest difference to a neighbour
+// (a bound on the surface between samples, never below it where it is smooth).
+struct PeakSearch {
+  std::vector<Vec3> points;
+  int fallbacks = 0;
 };
 
 class FloorSurface {
@@ -24,8 +34,8 @@ class FloorSurface {
   // maximum over the plane: its peaks, and the highest points of ridges (edges
   // between faces) and corners. The maximum over a disk is at one of these
   // inside the disk or on the disk's rim (thesis 4.4). `spacing` is the finest
-  // feature the search must resolve.
-  virtual std::vector<Vec3> peaks(Vec2 lo, Vec2 hi, double spacing) const = 0;
+  // feature the search must resolve. Ticks `progress` (it may cancel).
+  virtual PeakSearch peaks(Vec2 lo, Vec2 hi, double spacing, const Progress& progress) const = 0;
   virtual bool isFlat() const { return false; }
   // The same floor with its own evaluation state, for another thread.
   virtual std::unique_ptr<FloorSurface> clone() const = 0;

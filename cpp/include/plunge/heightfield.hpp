@@ -33,16 +33,14 @@ class HeightField {
   double highestAlong(Vec2 a, Vec2 b, double r) const;
 
   struct Contact {
-    double engagement = 0.0;  // widest radial band of material (mm); the diameter into solid
     double deepest = 0.0;     // thickest material above the cutting surface (mm)
     int materialCells = 0;    // cells with material thicker than the skin
     bool solid = false;       // material everywhere under the disk: a plunge into solid
     bool coreClear = true;    // every cell within the core radius is cut to z + skin
   };
   // What a plunge at c to tip height z would meet: material is stock more than
-  // kEngagementSkin above the cutter's surface. The engagement of a material
-  // cell is its distance to the nearest cell without material inside the disk
-  // (a crescent beside a hole at distance s has engagement s).
+  // kEngagementSkin above the cutter's surface. Its radial engagement is
+  // measured exactly, not on the raster (cuts.hpp).
   Contact contact(Vec2 c, const Cutter& cutter, double z, double coreRadius = 0.0) const;
   // Cells of material a cutter at c with its tip at z meets (beyond the skin),
   // counting cells whose centre lies up to `margin` beyond its radius.

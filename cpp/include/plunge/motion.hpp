@@ -20,6 +20,7 @@
 
 #include "plunge/depth.hpp"
 #include "plunge/heightfield.hpp"
+#include "plunge/progress.hpp"
 #include "plunge/region.hpp"
 #include "plunge/tools.hpp"
 #include "plunge/types.hpp"
@@ -37,6 +38,9 @@ struct MotionOptions {
   bool stockAwareHeights = true;
   double rapidClearance = 1.0;
   TimeModel timeModel;
+  bool peck = true;         // holes into solid deeper than a tool's peck depth are pecked
+  double peckDwell = 0.0;   // s at the bottom of a pecked hole
+  Progress progress;  // ticked per plunge (it may cancel)
 };
 
 // Splits the plunges of tools with a flute length into levels (same positions,

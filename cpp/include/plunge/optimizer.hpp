@@ -36,6 +36,12 @@ struct OptimizeOptions {
   // More start points for the local optimizer (in the function's coordinates),
   // e.g. where a coarse grid may miss a narrow optimum that is known elsewhere.
   std::vector<std::vector<double>> starts;
+  // Every iteration is bounded: the whole search stops after this many
+  // evaluations of f (grid included) and says so (OptimizeResult::converged).
+  int maxEvaluations = 200000;
+  // Called every few dozen evaluations: a long search reports progress and can
+  // be cancelled (Progress::tick throws), whatever f costs.
+  std::function<void()> poll;
 };
 
 struct LocalOptimum {
@@ -48,13 +54,17 @@ struct OptimizeResult {
   double value = 0.0;
   std::vector<LocalOptimum> locals;  // every local optimum found, best first
   int evaluations = 0;
+  // False when the evaluation budget ran out before every start had descended:
+  // the optimum may be missed, and a caller that needs a bound falls back.
+  bool converged = true;
 };
 
 using Objective = std::function<double(const double* x)>;
 
 // bounds: one (a, b) per variable, one or two variables, a < b, all finite.
 // Throws plunge::Error for a bad box or a non-finite value; exceptions thrown by
-// f pass through unchanged.
+// f or by options.poll pass through unchanged. f is never called at a
+// non-finite point (OpenCASCADE's classifiers do not return from one).
 OptimizeResult optimize(const Objective& f, const std::vector<std::pair<double, double>>& bounds, Goal goal,
                         const OptimizeOptions& options = {});
 

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <future>
 #include <memory>
 #include <string>
 #include <thread>
@@ -40,6 +41,15 @@ class Progress {
   bool cancelled() const { return state_->cancelled; }
   // The same callback and flag, with fractions [0, 1] mapped into [lo, hi] of this one.
   Progress sub(double lo, double hi) const;
+  // The result of work running on another thread, reporting (and able to
+  // cancel) while it runs: the caller's thread would otherwise wait silent.
+  // On a cancel the other thread's own ticks stop it; the future's owner
+  // waits for it as usual.
+  template <class T>
+  T await(std::future<T>& work) const {
+    while (work.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready) tick();
+    return work.get();
+  }
 
  private:
   struct State {

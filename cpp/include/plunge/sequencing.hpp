@@ -23,6 +23,9 @@ struct TourOptions {
   std::uint64_t seed = 0;
   // Iterated-local-search kicks; -1: chosen from the number of points.
   long long kicks = -1;
+  // Called every few hundred moves: a long tour reports progress and can be
+  // cancelled (Progress::tick throws). The tour does not depend on it.
+  std::function<void()> poll;
 };
 
 // A permutation of the point indices making the tour short. closed = false
@@ -39,8 +42,8 @@ double tourLength(const std::vector<Vec2>& points, const std::vector<int>& order
 // the returned order keeps a and b in their given order. The first point
 // stays first. Deterministic. For orders a constraint made: a plunge within
 // an engagement limit must follow the plunges whose cut it grows from
-// (engagement.hpp).
-std::vector<int> shortenKeepingOrder(const std::vector<Vec2>& points,
-                                     const std::function<bool(int, int)>& dependent);
+// (engagement.hpp). `poll` is called every few hundred moves tried.
+std::vector<int> shortenKeepingOrder(const std::vector<Vec2>& points, const std::function<bool(int, int)>& dependent,
+                                     const std::function<void()>& poll = {});
 
 }  // namespace plunge

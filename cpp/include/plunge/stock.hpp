@@ -119,6 +119,7 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const std::v
 
 struct StockReport {
   double maxFloorStock = 0.0;   // over cut samples of the core
+  Vec2 maxFloorStockAt;         // where it is
   double meanFloorStock = 0.0;  // over cut samples of the core
   double volumeRemoved = 0.0;   // mm^3, top of stock down to the cuts
   double volumeLeft = 0.0;      // mm^3, the pocket (to floor + allowance) minus what is removed
@@ -130,7 +131,11 @@ StockReport measureStock(const StockGrid& grid, double topZ);
 // Vertices on the accessible region's outline do not count: they lie on a wall
 // or on the arc of a corner the smallest tool cannot reach (stock any tool of
 // that size leaves). Pieces under `sliver` mm^2 are the polygon approximation's.
-double wallStockLeft(const Region& region, const std::vector<Loop>& uncovered, const std::vector<Loop>& accessible,
-                     double radialAllowance, double sliver = 0.01);
+struct WallStock {
+  double thickest = 0.0;
+  Vec2 at;  // the uncovered vertex farthest from the walls
+};
+WallStock wallStockLeft(const Region& region, const std::vector<Loop>& uncovered, const std::vector<Loop>& accessible,
+                        double radialAllowance, double sliver = 0.01);
 
 }  // namespace plunge

@@ -15,6 +15,9 @@ Cutter cutterOf(const Tool& tool);
 Plunge plungeOf(const Tool& tool, Vec2 c, double z);
 // The radius of the part that does not cut (0 for a centre-cutting tool).
 double coreRadius(const Tool& tool);
+// How deep one peck of a hole into solid goes: the tool's own, or three
+// diameters (beyond that, makers advise chip-clearing retracts).
+double peckDepthOf(const Tool& tool);
 // The band a tool may cut in one plunge, from its limit and core (infinite when free).
 double engagementLimit(const Tool& tool);
 // The centre-cutting tool that drills start holes for `tool`: the smallest one

@@ -35,6 +35,9 @@ struct Tool {
   bool centerCutting = true;   // "center_cutting": false for indexable plunge cutters
   double coreDiameter = 0.0;   // "core_diameter": the part of a non-centre-cutting tool that does not cut
   double fluteLength = 0.0;    // "flute_length": deepest cut in one plunge, mm
+  // "peck_depth": a hole drilled into solid deeper than this is pecked, mm
+  // (0: three diameters, what plunge-mill makers advise; tools.hpp peckDepthOf).
+  double peckDepth = 0.0;
 };
 
 // --- the input's options ------------------------------------------------------
@@ -97,6 +100,15 @@ struct Floor {
   std::string brep;  // a BREP file; a relative path starts at PlanInput::baseDir (resolveInputPath)
 };
 
+// The pocket's cross-section at a height above its floor, where it is wider
+// than the floor's outline (fillets and corner blends left to the finisher,
+// drafted walls): "sections" (plan.cpp, wallBandAbove).
+struct Section {
+  double z = 0.0;
+  Loop boundary;
+  std::vector<Loop> islands;
+};
+
 struct PlanInput {
   Loop boundary;
   std::vector<Loop> islands;
@@ -146,6 +158,13 @@ struct PlanInput {
   // "final_depth": no plunge stops below final_depth + the floor allowance
   // (FreeCAD: the operation's final depth; absent: the floor alone decides).
   std::optional<double> finalDepth;
+  // "peck": holes drilled into solid deeper than their tool's peck depth are
+  // pecked (motion.hpp); "peck_dwell": seconds at the bottom of each of them.
+  bool peck = true;
+  double peckDwell = 0.0;
+  // "sections": the pocket wider above its floor; at each the wall band is
+  // kept too, by plunges stopping at that height.
+  std::vector<Section> sections;
 };
 
 // --- the plan --------------------------------------------------------------------
@@ -168,6 +187,10 @@ struct Plunge {
   bool start = false;       // into solid (centre-cutting) or a start hole: no engagement limit
   double engagement = 0.0;  // radial engagement met, mm (engagement.hpp)
   int level = 0;            // 0 for the first level (flute length, motion.hpp)
+  // A hole drilled into solid deeper than its tool's peck depth: the depths
+  // (above z, deepest last) where the tool stops, rapids up out of the hole to
+  // clear the chips and rapids back to just above that depth (motion.hpp).
+  std::vector<double> pecks;
   bool rest = false;        // added by the rest step in Z (stats.rest_plunges; not in the JSON)
 };
 
@@ -175,6 +198,7 @@ struct ToolCount {
   int toolId = 0;
   double diameter = 0.0;
   int count = 0;
+  double peckDepth = 0.0;  // its holes into solid are pecked this deep (tools.hpp peckDepthOf)
 };
 
 struct PlanStats {
@@ -211,6 +235,8 @@ struct PlanStats {
   int levels = 1;               // most levels any tool needs for its flute length
   double minutesAtSafeHeight = 0.0;  // the time model with every move at safe_z
   double boundaryTolerance = 0.0;  // mm the walls were simplified by (limits.hpp), added to the radial allowance
+  int peckedPlunges = 0;   // holes into solid pecked (motion.hpp)
+  int depthFallbacks = 0;  // floor faces, edges or plunges whose depth search ran out of budget: sampled densely (depth.hpp)
 };
 
 // The floor stock left, sampled on a raster (for the plan's picture).
@@ -260,6 +286,19 @@ struct ToolSelection {
   std::vector<std::string> reasoning;
 };
 
+// A limit the user set that the plan cannot keep: which, how far, where and
+// why (docs/plan-format.md, "broken_limits"). Each is a warning too.
+struct BrokenLimit {
+  // The input's key: "max_wall_stock", "max_floor_stock", "min_coverage",
+  // "max_engagement", "min_engagement", "core_diameter" or "flute_length".
+  std::string limit;
+  double asked = 0.0;  // the limit (mm; min_coverage a fraction)
+  double worst = 0.0;  // the worst the plan comes to, in the same unit
+  Vec2 at;             // where that is
+  int count = 1;       // plunges (or places) beyond the limit
+  std::string why;     // what stops the plan keeping it, and what would
+};
+
 struct Plan {
   std::vector<Plunge> plunges;  // execution order: tools largest first
   PlanStats stats;
@@ -270,6 +309,7 @@ struct Plan {
   // What the user should know about a plan that is valid but short of what was
   // asked (for example coverage below min_coverage); JSON "warnings".
   std::vector<std::string> warnings;
+  std::vector<BrokenLimit> broken;   // the limits it could not keep (each also a warning)
   std::optional<StockMap> stockMap;  // sculptured floors only
 };
 

@@ -1,0 +1,91 @@
+"""Every limit the user set that a plan cannot keep is said: which, by how much,
+where and why, as data ("broken_limits") and as a warning. The plan's own
+claims are checked against geometry measured here (shapely), not taken as
+given; the engagement, core and flute-length kinds are the C++ test
+Motion.SaysEveryLimitItBreaks (plans by hand: the planner keeps those limits)."""
+import math
+
+import pytest
+from shapely.geometry import Point, Polygon
+from shapely.ops import unary_union
+
+from test_schema import schema
+
+
+def broken(plan, limit):
+    found = [b for b in plan.get("broken_limits", []) if b["limit"] == limit]
+    assert len(found) <= 1, found
+    return found[0] if found else None
+
+
+def said(plan, b):
+    """The warning that says it: the worst, where, and why."""
+    text = [w for w in plan.get("warnings", []) if b["why"] in w]
+    assert len(text) == 1, plan.get("warnings")
+    assert "the worst at (%.2f, %.2f)" % tuple(b["at"]) in text[0]
+    return text[0]
+
+
+def square(size=60, tools=(20,)):
+    return {"boundary": [[0, 0], [size, 0], [size, size], [0, size]], "top_z": 0, "safe_z": 5,
+            "floor": {"z": -10}, "allowance": {"radial": 0.5, "floor": 0.2}, "max_wall_stock": 1.0,
+            "tools": [{"diameter": d, "id": i + 1} for i, d in enumerate(tools)]}
+
+
+def test_corners_out_of_every_plungers_reach(plunge):
+    """A 20 mm plunger alone leaves about 0.29 of its radius (with the allowance)
+    in each square corner, more than the 1 mm band: said, at a corner, with the
+    plunger that would reach it; with a 6 mm plunger too, kept and not said."""
+    plan = plunge.plan(square())
+    schema("plan-output.schema.json").validate({k: v for k, v in plan.items() if k != "summary"})
+    b = broken(plan, "max_wall_stock")
+    assert b is not None
+    # The corner of the region 0.5 mm in, the disk 10 mm: 10 (1 - 1 / sqrt 2) from both walls.
+    r = 10
+    assert b["worst"] == pytest.approx(r * (1 - 1 / math.sqrt(2)), abs=0.15)
+    assert b["asked"] == 1.0 and b["count"] >= 1
+    x, y = b["at"]
+    assert min(math.hypot(x - cx, y - cy) for cx in (0, 60) for cy in (0, 60)) < r  # in a corner
+    # The stock measured here: the corner's point farthest from the walls that no disk covers.
+    disks = unary_union([Point(p["x"], p["y"]).buffer(p["diameter"] / 2, 256) for p in plan["plunges"]])
+    room = Polygon(square()["boundary"]).buffer(-0.5, join_style=2).difference(disks)
+    thickest = max(min(px, py, 60 - px, 60 - py) - 0.5 for g in getattr(room, "geoms", [room])
+                   for px, py in g.exterior.coords)
+    assert b["worst"] == pytest.approx(thickest, abs=0.15)
+    assert "a plunger of" in said(plan, b)
+    kept = plunge.plan(square(tools=(20, 6)))
+    assert broken(kept, "max_wall_stock") is None
+    assert kept["stats"]["max_wall_stock_left"] <= 1.0 + 1e-9
+
+
+def test_a_grid_short_of_the_core(plunge):
+    """The grid's fixed spacing leaves core material: said where it is left."""
+    data = square(tools=(12,))
+    data.update(strategy="grid", grid={"pattern": "square", "step": 1.0})
+    plan = plunge.plan(data)
+    b = broken(plan, "max_wall_stock")
+    assert b is not None and "grid" in b["why"]
+    x, y = b["at"]
+    disks = unary_union([Point(p["x"], p["y"]).buffer(6, 128) for p in plan["plunges"]])
+    assert not disks.contains(Point(x, y))  # uncut where it says
+    assert min(x, y, 60 - x, 60 - y) > 0.5 + 1.0  # and beyond the band
+    said(plan, b)
+    data["max_wall_stock"] = 0
+    plan = plunge.plan(data)
+    b = broken(plan, "min_coverage")
+    assert b is not None and b["worst"] == pytest.approx(plan["stats"]["coverage"]) and b["worst"] < b["asked"]
+    said(plan, b)
+
+
+def test_floor_stock_no_plunger_reaches(plunge):
+    """A floor with a narrow trough a 20 mm flat plunger cannot enter: the stock
+    it leaves there is said, at the trough, with the tool that would."""
+    data = square(tools=(20,))
+    data["max_wall_stock"] = 0
+    data["floor"] = {"expression": "-10 - 4*exp(-((x-30)^2)/4)"}  # a trough along x = 30
+    plan = plunge.plan(data)
+    b = broken(plan, "max_floor_stock")
+    assert b is not None
+    assert b["worst"] == pytest.approx(plan["stats"]["max_floor_stock_left"]) and b["worst"] > 1.0
+    assert abs(b["at"][0] - 30) < 2  # in the trough
+    assert "smaller or ball-end" in said(plan, b)
