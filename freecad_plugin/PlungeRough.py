@@ -341,8 +341,12 @@ def build_input(obj, tcs, faces, workdir, notes=None):
     pocket = geometry.pocket(faces, obj.ChordTolerance.Value, obj.IncludeFillets, margin, model_of(obj))
     if notes is not None:
         notes.extend(pocket.notes())
-    deviation = pocket.deviation
     check_settings(obj, tcs)
+    # Where the pocket widens above its floor, the wall band is kept there too.
+    sections, deviation = geometry.sections(model_of(obj), pocket, obj.StartDepth.Value,
+                                                obj.MaxWallStock.Value) \
+        if obj.MaxWallStock.Value > 0 else ([], 0.0)
+    deviation = max(deviation, pocket.deviation)
     data = {
         "version": 1,
         "boundary": pocket.boundary,
@@ -367,6 +371,8 @@ def build_input(obj, tcs, faces, workdir, notes=None):
         "stock_aware_heights": bool(obj.StockAwareHeights and not obj.UseCannedCycle),
         "peck": bool(obj.PeckEnabled),
     }
+    if sections:
+        data["sections"] = sections
     if obj.DwellTime > 0 and not obj.UseCannedCycle:
         data["peck_dwell"] = obj.DwellTime
     if obj.PeckDepth.Value > 0:

@@ -102,10 +102,15 @@ def _check_face(name, face):
                             "the tool plunges onto" % name)
 
 
-def _rises_from(floor, other, edge):
+def _rises_from(floor, other, edge, corner=False):
     """`other` is a fillet of `floor` along `edge`: curved, tangent to the floor
-    there, rising from the edge and facing up everywhere (into a wall above)."""
-    if isinstance(other.Surface, Part.Plane) or other.BoundBox.ZMax <= edge.BoundBox.ZMax + 1e-6:
+    there, rising from the edge and facing up everywhere (into a wall above).
+    corner: `floor` is itself a fillet, and `other` may be the blend between
+    two fillets at a corner (as high as the fillet, not rising from the edge)."""
+    if isinstance(other.Surface, Part.Plane):
+        return False
+    if other.BoundBox.ZMax <= edge.BoundBox.ZMax + 1e-6 \
+            and not (corner and other.BoundBox.ZMax <= floor.BoundBox.ZMax + 1e-6):
         return False
     mid = edge.valueAt(0.5 * (edge.FirstParameter + edge.LastParameter))
     try:
@@ -135,11 +140,12 @@ def _fillets(model, faces):
     queue = list(faces)
     while queue:
         face = queue.pop(0)
+        corner = any(face.isSame(f) for f in added)
         for edge in face.Edges:
             for other in model.ancestorsOfType(edge, Part.Face):
                 if any(other.isSame(f) for f in floor):
                     continue
-                if _rises_from(face, other, edge):
+                if _rises_from(face, other, edge, corner):
                     floor.append(other)
                     added.append(other)
                     queue.append(other)
@@ -224,6 +230,7 @@ class Pocket:
         self.kept_walls = 0   # open sides kept as walls: part material within reach past them
         self.lowest = 0.0     # lowest point of the floor
         self.tolerance = 0.01  # chord tolerance
+        self.shadow = None    # the floor's outline in plan view, exact (a face at z = 0)
 
     def notes(self):
         """What the summary says of the pocket beyond the selection."""
@@ -375,6 +382,7 @@ def pocket(selection, tolerance, include_fillets=True, margin=1.5, model=None):
                             "faces of one pocket (one operation per pocket)"
                             % (", ".join(n for n, _ in selection), len(union.Faces)))
     shadow = union.Faces[0]
+    result.shadow = shadow
     walls, opened = _classify_edges(model, floor, shadows) if model is not None else ([], [])
     boundary, result.deviation = _polyline(shadow.OuterWire, tolerance)
     if len(boundary) < 3 or abs(_signed_area(boundary)) < 1e-9:
@@ -502,3 +510,112 @@ def tool_spec(tc, max_engagement=100.0, min_engagement=0.0):
 
 def distance(a, b):
     return math.hypot(a[0] - b[0], a[1] - b[1])
+
+
+# ---------------------------------------------------------------- sections above the floor
+
+MAX_SECTIONS = 10  # each costs one covering of the section: a few suffice where the pocket widens
+
+
+def _stands_vertical(face):
+    """A plane or cylinder standing upright: the pocket keeps its width along it."""
+    s = face.Surface
+    if isinstance(s, Part.Plane):
+        return abs(s.Axis.z) < 1e-9
+    if isinstance(s, Part.Cylinder):
+        return abs(abs(s.Axis.z) - 1.0) < 1e-9
+    return False
+
+
+def _wall_faces(model, floor, lowest):
+    """The faces of the part around the floor (its neighbours, and theirs: the
+    corner blends between a wall's fillet and the floor's), within the pocket's height."""
+    seen, ring, out = list(floor), list(floor), []
+    for _ in range(2):
+        nxt = []
+        for face in ring:
+            for edge in face.Edges:
+                for other in model.ancestorsOfType(edge, Part.Face):
+                    if any(other.isSame(f) for f in seen) or other.BoundBox.ZMin < lowest - 1e-6:
+                        continue
+                    seen.append(other)
+                    nxt.append(other)
+        out += nxt
+        ring = nxt
+    return out
+
+
+def _section_heights(walls, lowest, top, band):
+    """Where the pocket may widen above its floor: up each wall face that does
+    not stand vertical (fillets, blends, drafts), at steps over which it widens
+    about one band (at most four), to its top; the middle of the wall; the
+    lowest first, at most MAX_SECTIONS spread over them."""
+    heights = {0.5 * (lowest + top)}
+    for f in walls:
+        if _stands_vertical(f):
+            continue
+        lo, hi = max(f.BoundBox.ZMin, lowest), min(f.BoundBox.ZMax, top)
+        widens = min(f.BoundBox.XLength, f.BoundBox.YLength)  # a fillet's radius, a draft's run
+        n = max(1, min(4, int(math.ceil(widens / max(band, 0.1)))))
+        heights.update(lo + (hi - lo) * k / n for k in range(1, n + 1))
+    picked = []
+    for z in sorted(heights):
+        if lowest + 0.05 < z < top - 0.05 and (not picked or z - picked[-1] > 0.25):
+            picked.append(z)
+    if len(picked) > MAX_SECTIONS:
+        step = (len(picked) - 1) / (MAX_SECTIONS - 1)
+        picked = [picked[round(k * step)] for k in range(MAX_SECTIONS)]
+    return picked
+
+
+def _inside_point(boundary, islands):
+    """A point of the pocket's region (in neither an island nor outside)."""
+    region = _polygon_face(boundary)
+    if islands:
+        region = region.cut([_polygon_face(i) for i in islands])
+    points, triangles = region.tessellate(0.1)
+    a, b, c = max(triangles, key=lambda t: abs((points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).z))
+    return (points[a] + points[b] + points[c]) * (1.0 / 3.0)
+
+
+def _air_at(model, z, at):
+    """The air of the part's cross-section at height z around the point `at`
+    (a face: the pocket's outline there and its islands), None where the
+    pocket opens to the outside at that height."""
+    bb = model.BoundBox
+    plane = Part.makePlane(bb.XLength + 20, bb.YLength + 20, V(bb.XMin - 10, bb.YMin - 10, z))
+    for f in plane.cut(model).Faces:
+        if f.isInside(V(at.x, at.y, z), 1e-6, True):
+            fb = f.BoundBox
+            if fb.XMin < bb.XMin - 5 or fb.YMin < bb.YMin - 5 or fb.XMax > bb.XMax + 5 or fb.YMax > bb.YMax + 5:
+                return None
+            return f
+    return None
+
+
+def sections(model, pocket, top, band):
+    """The pocket's cross-sections above its floor where it is wider there than
+    its outline (fillets and corner blends left as walls, drafted walls): the
+    planner keeps the wall band at each of their heights too. [{"z",
+    "boundary", "islands"}], none for a pocket open to a side or without a part;
+    and the largest deviation of their polylines from the part."""
+    if model is None or pocket.open_sides or pocket.kept_walls:
+        return [], 0.0
+    floor = [f for _, f in pocket.faces]
+    lowest = pocket.lowest
+    at = _inside_point(pocket.boundary, pocket.islands)
+    out, deviation, below = [], 0.0, pocket.shadow.Area
+    for z in _section_heights(_wall_faces(model, floor, lowest), lowest, top, band):
+        air = _air_at(model, z, at)
+        if air is None or air.Area - below < 1e-3 * air.Length:
+            continue  # open there, or no wider than the floor's outline or the section below
+        below = air.Area
+        loops = []
+        for w in [air.OuterWire] + [w for w in air.Wires if not w.isSame(air.OuterWire)]:
+            loop, d = _polyline(w, pocket.tolerance)
+            deviation = max(deviation, d)
+            loops.append(loop)
+        if _signed_area(loops[0]) < 0:
+            loops[0].reverse()
+        out.append({"z": z, "boundary": loops[0], "islands": [i for i in loops[1:] if len(i) >= 3]})
+    return out, deviation

@@ -41,9 +41,13 @@ double climb(Point x, double v, double step, double minStep, const std::vector<P
 constexpr int kPlungeEvaluations = 60000;
 
 // Maximum of g over the circle of radius r around c (eq. 4.84), by the global
-// optimizer in one periodic variable; -inf if g is nowhere finite on it.
-// converged: false when the optimizer ran out of budget.
-double rimMaximum(const std::function<double(Vec2)>& g, Vec2 c, double r, double spacing, bool& converged) {
+// optimizer in one periodic variable, and the angle where it is; -inf if g is
+// nowhere finite on it. converged: false when the optimizer ran out of budget.
+struct RimMax {
+  double value = -kInf;
+  double angle = 0.0;
+};
+RimMax rimMaximum(const std::function<double(Vec2)>& g, Vec2 c, double r, double spacing, bool& converged) {
   OptimizeOptions opt;
   opt.periodic = true;
   opt.skipNonFinite = true;
@@ -54,12 +58,46 @@ double rimMaximum(const std::function<double(Vec2)>& g, Vec2 c, double r, double
         [&](const double* t) { return g({c.x + r * std::cos(t[0]), c.y + r * std::sin(t[0])}); }, {{0.0, 2 * kPi}},
         Goal::Maximize, opt);
     converged = converged && o.converged;
-    return o.value;
+    return {o.value, o.x[0]};
   } catch (const Cancelled&) {
     throw;
   } catch (const Error&) {
-    return -kInf;  // no floor anywhere on the rim
+    return {};  // no floor anywhere on the rim
   }
+}
+
+// A corner this thin (the flat cutter grown by the floor allowance) is searched
+// on rings across it rather than by a search over the whole disk.
+constexpr double kThinCorner = 0.5;
+constexpr double kRingStep = 0.1;
+
+// The highest contact of a thin-cornered bull nose in its corner's annulus:
+// the maximum on rings across it (the flat's rim included), polished by a
+// compass search in (angle, radius). The flat's inside touches at a floor peak
+// or on that rim, so this and the peaks are the whole drop-cutter (4.4).
+double cornerMaximum(const std::function<double(Vec2)>& lift, Vec2 c, const Cutter& cutter, double spacing,
+                     bool& converged) {
+  const double flat = cutter.radius - cutter.cornerRadius;
+  const int n = std::max(2, static_cast<int>(std::ceil(cutter.cornerRadius / kRingStep)));
+  RimMax best;
+  double bestRho = flat;
+  for (int k = 0; k <= n; ++k) {
+    const double rho = flat + cutter.cornerRadius * k / n;
+    const RimMax m = rimMaximum(lift, c, rho, spacing, converged);
+    if (m.value > best.value) best = m, bestRho = rho;
+  }
+  if (!std::isfinite(best.value)) return best.value;
+  auto polar = [&](Vec2 p) {  // p = (angle, radius)
+    if (p.y < flat - 1e-12 || p.y > cutter.radius) return kNaN;
+    return lift({c.x + p.y * std::cos(p.x), c.y + p.y * std::sin(p.x)});
+  };
+  const double step = cutter.cornerRadius / n;
+  const std::vector<Vec2> compass{{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {0.7071, 0.7071}, {-0.7071, 0.7071},
+                                  {0.7071, -0.7071}, {-0.7071, -0.7071}};
+  // The angle moves by step / radius: about as far along the rim as the radius moves.
+  const double scale = 1.0 / std::max(bestRho, step);
+  auto scaled = [&](Vec2 p) { return polar({p.x * scale, p.y}); };
+  return climb(Vec2{best.angle / scale, bestRho}, best.value, step, 1e-9, compass, scaled);
 }
 
 }  // namespace
@@ -99,7 +137,7 @@ double DepthSolver::searchedStopHeight(Vec2 c, const Cutter& cutter, bool& conve
     if (rho > R * (1 + 1e-12)) return kNaN;
     return floor_.height(q) - cutterProfile(cutter, rho);
   };
-  double best = rimMaximum(lift, c, R, spacing_, converged);
+  double best = rimMaximum(lift, c, R, spacing_, converged).value;
   // Peaks of the floor inside the disk (eq. 4.83 and the thesis's local maxima).
   std::vector<std::vector<double>> inner;
   for (const Vec3& p : peaks_)
@@ -107,7 +145,9 @@ double DepthSolver::searchedStopHeight(Vec2 c, const Cutter& cutter, bool& conve
       best = std::max(best, p.z - cutterProfile(cutter, dist({p.x, p.y}, c)));
       inner.push_back({p.x, p.y});
     }
-  if (cutter.shape != CutterShape::Flat) {
+  if (cutter.shape == CutterShape::Bull && cutter.cornerRadius <= kThinCorner) {
+    best = std::max(best, cornerMaximum(lift, c, cutter, spacing_, converged));
+  } else if (cutter.shape != CutterShape::Flat) {
     // Drop-cutter: the touching point need not be a peak of the floor.
     OptimizeOptions opt;
     opt.skipNonFinite = true;

@@ -308,8 +308,11 @@ class BrepFloor : public FloorSurface {
     }
     if (!ok) {
       const Sample* best = &f.samples.front();
-      for (const Sample& s : f.samples)
-        if (std::hypot(s.x - p.x, s.y - p.y) < std::hypot(best->x - p.x, best->y - p.y)) best = &s;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const Sample& s : f.samples) {
+        const double d2 = (s.x - p.x) * (s.x - p.x) + (s.y - p.y) * (s.y - p.y);
+        if (d2 < nearest) nearest = d2, best = &s;
+      }
       u = best->u;
       v = best->v;
       ok = solve(f, p, u, v);

@@ -102,6 +102,24 @@ TEST(Depth, BallAndBullAgainstBruteForce) {
   for (Vec2 c : {Vec2{30, 40}, Vec2{50, 20}, Vec2{68, 52}})
     for (const Cutter& k : {Cutter{CutterShape::Ball, 6, 6}, Cutter{CutterShape::Bull, 6, 2}})
       expectTight(*floor, solver, c, k);
+  // Thin corners (a flat cutter grown by a floor allowance) are searched on rings.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> ux(8, 92), uy(8, 67);
+  for (int i = 0; i < 24; ++i)
+    expectTight(*floor, solver, {ux(rng), uy(rng)}, grownAround({CutterShape::Flat, 2.0 + i % 6, 0}, 0.1 + 0.1 * (i % 4)),
+                0.05);
+}
+
+TEST(Depth, ThinCornerOnSteepPlanes) {
+  // The grown flat cutter on a plane z = m x touches in its corner: exact.
+  for (double m : {0.2, 1.0, 3.0}) {
+    const auto floor = makeExpressionFloor(std::to_string(m) + "*x");
+    const DepthSolver solver(*floor, {-50, -50}, {50, 50}, 2.0);
+    const double rc = 0.3, flat = 5, k = std::sqrt(1 + m * m);
+    const Cutter grown = grownAround({CutterShape::Flat, flat, 0}, rc);
+    // The corner's centre circle at x = flat, the torus touches the plane rc * k above it less rc.
+    EXPECT_NEAR(solver.stopHeight({4, 1}, grown), m * (4 + flat) + rc * (k - 1), 1e-6) << m;
+  }
 }
 
 TEST(Depth, BsplineFaceFromOcct) {

@@ -27,6 +27,7 @@ import math
 import time
 
 import FreeCAD
+import numpy as np
 import Part
 
 V = FreeCAD.Vector
@@ -406,6 +407,94 @@ def check_job(job, radial, floor, ops=None, lead_outs=True, **kw):
     model object's shape, placed as the Job machines it)."""
     part = job.Model.Group[0].Shape
     return check(part, job_stops(job, ops, lead_outs), radial, floor, **kw)
+
+
+# ---------------------------------------------------------------- the wall band at a height
+
+def radius_at(tool, bottom, z):
+    """The radius the tool cuts at height z with its tip at `bottom` (0 below the tip)."""
+    h = z - bottom
+    if h <= 0:
+        return 0.0
+    if h >= tool.corner:
+        return tool.radius
+    rc = tool.corner
+    return tool.radius - rc + math.sqrt(max(0.0, rc * rc - (rc - h) ** 2))
+
+
+def air_at(part, z, inside):
+    """The part's cross-section of air at height z around the point `inside`
+    (x, y): a face whose outer wire is the pocket's wall there."""
+    bb = part.BoundBox
+    plane = Part.makePlane(bb.XLength + 20, bb.YLength + 20, V(bb.XMin - 10, bb.YMin - 10, z))
+    for f in plane.cut(part).Faces:
+        if f.isInside(V(inside[0], inside[1], z), 1e-6, True):
+            return f
+    raise ValueError("no air at z = %g around %s" % (z, inside))
+
+
+def _loops(face):
+    """The face's wires as closed XY polylines within 5 um (numpy arrays)."""
+    out = []
+    for w in face.Wires:
+        pts = w.discretize(Deflection=0.005)
+        out.append(np.array([(p.x, p.y) for p in pts]))
+    return out
+
+
+def _inside_and_wall(points, loops):
+    """Even-odd inside test of the points against the loops, and each point's
+    distance to the nearest segment of them."""
+    inside = np.zeros(len(points), dtype=bool)
+    wall = np.full(len(points), np.inf)
+    x, y = points[:, 0:1], points[:, 1:2]
+    for L in loops:
+        a, b = L[:-1], L[1:]
+        ax, ay, bx, by = a[:, 0], a[:, 1], b[:, 0], b[:, 1]
+        crosses = ((ay > y) != (by > y)) & (x < (bx - ax) * (y - ay) / np.where(by == ay, 1e-300, by - ay) + ax)
+        inside ^= (np.count_nonzero(crosses, axis=1) % 2).astype(bool)
+        dx, dy = bx - ax, by - ay
+        t = np.clip(((x - ax) * dx + (y - ay) * dy) / np.maximum(dx * dx + dy * dy, 1e-300), 0, 1)
+        wall = np.minimum(wall, np.hypot(ax + t * dx - x, ay + t * dy - y).min(axis=1))
+    return inside, wall
+
+
+def band_left(part, stops, z, radial, band, tol=0.01, step=0.05):
+    """The wall band at height z, measured from the part on a grid of `step`:
+    of the pocket's cross-section there (the air at z around the stops), the
+    points farther than radial + band + tol from its walls (the core), how far
+    the farthest lies from what the stops cut at z (each stop's tool at its
+    radius there; lead-outs left out). {"z", "uncut", "at", "core_points"}:
+    uncut 0 when every point of the core was cut."""
+    deep = [s for s in stops if s.kind == "stop" and s.z < z - 1e-9]
+    if not deep:
+        raise ValueError("no stop reaches below z = %g" % z)
+    air = air_at(part, z, (deep[0].x, deep[0].y))
+    loops = _loops(air)
+    disks = np.array([(s.x, s.y, radius_at(s.tool, s.z, z)) for s in deep])
+    disks = disks[disks[:, 2] > 1e-9]
+    bb = air.BoundBox
+    xs = np.arange(bb.XMin + step / 2, bb.XMax, step)
+    out = {"z": round(z, 4), "uncut": 0.0, "at": None, "core_points": 0}
+    limit = radial + band + tol
+    rows = max(1, int(20000 // max(len(xs), 1)))
+    for y0 in np.arange(bb.YMin + step / 2, bb.YMax, step * rows):
+        ys = y0 + step * np.arange(rows)
+        points = np.array([(x, y) for y in ys for x in xs])
+        inside, wall = _inside_and_wall(points, loops)
+        core = points[inside & (wall > limit)]
+        if not len(core):
+            continue
+        out["core_points"] += len(core)
+        near = disks[(disks[:, 1] + disks[:, 2] >= ys[0]) & (disks[:, 1] - disks[:, 2] <= ys[-1])]
+        if not len(near):
+            gap = np.full(len(core), np.inf)
+        else:
+            gap = (np.hypot(core[:, 0:1] - near[:, 0], core[:, 1:2] - near[:, 1]) - near[:, 2]).min(axis=1)
+        k = int(np.argmax(gap))
+        if gap[k] > out["uncut"]:
+            out["uncut"], out["at"] = float(gap[k]), (round(core[k][0], 3), round(core[k][1], 3))
+    return out
 
 
 def lift_needed(part, stop, radial, floor, tol=TOL, step=0.01, limit=5.0):

@@ -96,7 +96,7 @@ def add_plungers(job, kind, tools, folder, **bit):
     return tcs
 
 
-def plan(doc, shape, floor_faces, kind, tmp, tools=None, placement=None, **bit):
+def plan(doc, shape, floor_faces, kind, tmp, tools=None, placement=None, include_fillets=True, **bit):
     """A Job on the shape (as a Part feature, placed), the kind's plungers and a
     Plunge Rough operation on the floor faces (fillets included), recomputed."""
     obj = doc.addObject("Part::Feature", "Part")
@@ -110,7 +110,7 @@ def plan(doc, shape, floor_faces, kind, tmp, tools=None, placement=None, **bit):
     tcs = add_plungers(job, kind, tools or SETS[kind], str(tmp), **bit)
     op = PlungeRough.Create("PlungeRough", parentJob=job)
     op.Base = [(model, floor_faces(model.Shape))]
-    op.IncludeFillets = True
+    op.IncludeFillets = include_fillets
     op.RadialAllowance, op.FloorAllowance = RADIAL, FLOOR
     t0 = time.time()
     doc.recompute()
@@ -345,3 +345,34 @@ def test_nist_filleted_pocket(doc, tmp_path, kind):
     job, op, tcs = plan(doc, shape, lambda s: [name], kind, tmp_path, tools=tools,
                         flute=math.ceil(depth + 20), length=math.ceil(depth + 60))
     measured(job, op, "nist_%s_%s" % (name, kind))
+
+
+# ---------------------------------------------------------------- the wall band above the floor
+
+@pytest.mark.parametrize("walls,floor,together", [(3, 3, True), (5, 2, False), (10, 10, True)])
+@pytest.mark.parametrize("include_fillets", [True, False])
+def test_wall_band_above_the_floor(doc, tmp_path, walls, floor, together, include_fillets):
+    """The wall band (Max Wall Stock, 1 mm) measured from the part, corners
+    included: at mid-wall height and just above the fillets and blends, where
+    the walls stand vertical. What the plunges through a height cut there (each
+    tool at its radius at that height, lead-outs aside) leaves nothing farther
+    than the radial allowance and the band from the part's walls at that height,
+    within 0.02 mm (0.01 of chords on the walls, 0.01 of measuring), on a grid
+    of 0.05 mm. With the fillets as walls (not included) the pocket widens
+    above its floor."""
+    shape = box_pocket(walls, floor, together)
+    job, op, tcs = plan(doc, shape, lowest_up_face, "flat", tmp_path, placement=placed(),
+                        include_fillets=include_fillets)
+    part = job.Model.Group[0].Shape
+    stops = ac.job_stops(job, lead_outs=False)
+    bottom = min(s.z for s in stops) - FLOOR  # the floor, as placed
+    data = json.loads(op.PlanData)["input"]
+    if not include_fillets:
+        assert data.get("sections"), "the pocket widens above its floor: no section passed"
+    band = op.MaxWallStock.Value
+    for z in (bottom + max(walls, floor) + 0.5, bottom + 10.0):
+        left = ac.band_left(part, stops, z, RADIAL, band, tol=0.02)
+        print("z %.2f: %s" % (z, left))
+        assert left["core_points"] > 1000
+        assert left["uncut"] <= 0.02, "at z = %.2f, uncut %.3f mm beyond the band at %s (%s)" % (
+            z, left["uncut"], left["at"], op.Summary)
