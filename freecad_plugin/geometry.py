@@ -107,8 +107,8 @@ def _rises_from(floor, other, edge, corner=False):
     there, rising from the edge and facing up everywhere (into a wall above).
     corner: `floor` is itself a fillet, and `other` may be the blend between
     two fillets at a corner (as high as the fillet, not rising from the edge)."""
-    if isinstance(other.Surface, Part.Plane):
-        return False
+    if isinstance(other.Surface, Part.Plane) or _stands_vertical(other):
+        return False  # a wall (a vertical edge's fillet stands, whatever trims its foot)
     if other.BoundBox.ZMax <= edge.BoundBox.ZMax + 1e-6 \
             and not (corner and other.BoundBox.ZMax <= floor.BoundBox.ZMax + 1e-6):
         return False

@@ -96,11 +96,15 @@ def add_plungers(job, kind, tools, folder, **bit):
     return tcs
 
 
-def plan(doc, shape, floor_faces, kind, tmp, tools=None, placement=None, include_fillets=True, **bit):
+def plan(doc, shape, floor_faces, kind, tmp, tools=None, placement=None, include_fillets=True, MaxFloorStock=1.0,
+         **bit):
     """A Job on the shape (as a Part feature, placed), the kind's plungers and a
     Plunge Rough operation on the floor faces (fillets included), recomputed."""
-    obj = doc.addObject("Part::Feature", "Part")
-    obj.Shape = shape
+    if isinstance(shape, Part.Shape):
+        obj = doc.addObject("Part::Feature", "Part")
+        obj.Shape = shape
+    else:  # the part as a user modelled it (a feature of the document)
+        obj = shape
     if placement is not None:
         obj.Placement = placement
     doc.recompute()
@@ -111,6 +115,7 @@ def plan(doc, shape, floor_faces, kind, tmp, tools=None, placement=None, include
     op = PlungeRough.Create("PlungeRough", parentJob=job)
     op.Base = [(model, floor_faces(model.Shape))]
     op.IncludeFillets = include_fillets
+    op.MaxFloorStock = MaxFloorStock
     op.RadialAllowance, op.FloorAllowance = RADIAL, FLOOR
     t0 = time.time()
     doc.recompute()
@@ -293,12 +298,17 @@ def test_checker_finds_a_stop_too_low():
 
 # ---------------------------------------------------------------- the planner's stops
 
-@pytest.mark.parametrize("radius,kind", [(1, "flat"), (3, "flat"), (5, "flat"), (10, "flat"), (1, "bull"),
-                                         (5, "bull"), (3, "ball"), (10, "ball")])
-def test_filleted_pocket(doc, tmp_path, radius, kind):
+# Floor-rest plunges (Max Floor Stock 1 mm) on the smaller fillets; on the
+# larger ones the rest step alone plans hundreds of plunges on the fillets
+# (minutes), so these keep the packing's and covering's stops only.
+@pytest.mark.parametrize("radius,kind,floor_stock", [(1, "flat", 1.0), (3, "flat", 1.0), (5, "flat", 0.0),
+                                                     (10, "flat", 0.0), (1, "bull", 1.0), (5, "bull", 0.0),
+                                                     (3, "ball", 0.0), (10, "ball", 0.0)])
+def test_filleted_pocket(doc, tmp_path, radius, kind, floor_stock):
     """60 x 40 pocket 20 deep, walls and floor edges filleted at one radius
     (spherical corners), placed off the origin and turned."""
-    job, op, tcs = plan(doc, box_pocket(radius, radius), lowest_up_face, kind, tmp_path, placement=placed())
+    job, op, tcs = plan(doc, box_pocket(radius, radius), lowest_up_face, kind, tmp_path, placement=placed(),
+                        MaxFloorStock=floor_stock)
     measured(job, op, "fillet_R%d_%s" % (radius, kind))
 
 
@@ -317,6 +327,52 @@ def test_sculptured_example(doc, tmp_path, kind):
     job, op, tcs = plan(doc, parts.freeform_part(True), lambda s: [parts.floor_face_name(s, True)], kind, tmp_path,
                         tools=[(20, 3), (12, 2), (6, 1)] if kind == "bull" else [(20, 0), (12, 0), (6, 0)])
     measured(job, op, "sculptured_%s" % kind)
+
+
+def user_blends(doc, walls, floor, floor_end):
+    """A block with a pocket (Part Cut of two Part Boxes) and a Part Fillet on the
+    pocket's edges, as the Part workbench's dialog makes it: the vertical edges
+    at `walls`, the floor's edges from `floor` to `floor_end` (a variable radius:
+    B-spline fillets)."""
+    block = doc.addObject("Part::Box", "Block")
+    block.Length, block.Width, block.Height = 70, 50, 30
+    cavity = doc.addObject("Part::Box", "PocketTool")
+    cavity.Length, cavity.Width, cavity.Height = 50, 30, 30
+    cavity.Placement.Base = V(10, 10, 12)
+    cut = doc.addObject("Part::Cut", "Cut")
+    cut.Base, cut.Tool = block, cavity
+    doc.recompute()
+    edges = []
+    for i, e in enumerate(cut.Shape.Edges):
+        b = e.BoundBox
+        if not (9 < b.XMin and b.XMax < 61 and 9 < b.YMin and b.YMax < 41):
+            continue
+        if b.ZLength > 17 and b.XLength < 1e-6 and b.YLength < 1e-6:
+            edges.append((i + 1, walls, walls))
+        elif abs(b.ZMin - 12) < 1e-6 and abs(b.ZMax - 12) < 1e-6:
+            edges.append((i + 1, floor, floor_end))
+    assert len(edges) == 8
+    fillet = doc.addObject("Part::Fillet", "Fillet")
+    fillet.Base = cut
+    fillet.Edges = edges
+    cut.Visibility = False
+    doc.recompute()
+    assert fillet.Shape.isValid()
+    return fillet
+
+
+@pytest.mark.parametrize("walls,floor,floor_end,surface", [
+    (0.5, 0.5, 0.5, Part.Sphere), (1, 1, 1, Part.Sphere), (3, 0.5, 0.5, Part.Toroid),
+    (2, 0.5, 1.0, Part.BSplineSurface)])
+def test_small_corner_blends(doc, tmp_path, walls, floor, floor_end, surface):
+    """Small corner blends (R0.5 to R3: spherical, toroidal, B-spline) made with
+    a Part Fillet as users do, planned with the fillets in the floor: they plan
+    (the time is in the report) and keep the allowance in 3D."""
+    part = user_blends(doc, walls, floor, floor_end)
+    assert any(isinstance(f.Surface, surface) for f in part.Shape.Faces)
+    job, op, tcs = plan(doc, part, lowest_up_face, "flat", tmp_path)
+    assert op.IncludeFillets and "fillets added to the floor" in op.Summary
+    measured(job, op, "blends_%g_%g_%g" % (walls, floor, floor_end))
 
 
 def nist_part():
@@ -349,8 +405,8 @@ def test_nist_filleted_pocket(doc, tmp_path, kind):
 
 # ---------------------------------------------------------------- the wall band above the floor
 
-@pytest.mark.parametrize("walls,floor,together", [(3, 3, True), (5, 2, False), (10, 10, True)])
-@pytest.mark.parametrize("include_fillets", [True, False])
+@pytest.mark.parametrize("walls,floor,together,include_fillets", [
+    (3, 3, True, True), (3, 3, True, False), (5, 2, False, True), (5, 2, False, False), (10, 10, True, False)])
 def test_wall_band_above_the_floor(doc, tmp_path, walls, floor, together, include_fillets):
     """The wall band (Max Wall Stock, 1 mm) measured from the part, corners
     included: at mid-wall height and just above the fillets and blends, where
@@ -370,7 +426,8 @@ def test_wall_band_above_the_floor(doc, tmp_path, walls, floor, together, includ
     if not include_fillets:
         assert data.get("sections"), "the pocket widens above its floor: no section passed"
     band = op.MaxWallStock.Value
-    for z in (bottom + max(walls, floor) + 0.5, bottom + 10.0):
+    above = bottom + max(walls, floor)  # the fillets' and blends' top: the walls stand vertical above
+    for z in (above + 0.5, 0.5 * (above + part.BoundBox.ZMax)):
         left = ac.band_left(part, stops, z, RADIAL, band, tol=0.02)
         print("z %.2f: %s" % (z, left))
         assert left["core_points"] > 1000

@@ -160,3 +160,20 @@ def test_optimize_bad_functions(plunge):
         plunge.optimize(lambda x: "high", [(0, 1)])
     with pytest.raises(ValueError, match="goal"):
         plunge.optimize(lambda x: x, [(0, 1)], goal="best")
+
+
+@pytest.mark.parametrize("brep", ["plane_and_sphere_blend.brep", "sphere_blend.brep"])
+def test_a_small_spherical_blend_ends_with_progress_all_along(plunge, brep):
+    """A public part's plateau pocket (IncludeFillets on) on a floor of its
+    plane and one R1 spherical corner blend (1.3 mm2), or the blend alone: the
+    floor's peak search once never returned and called no progress. Now it
+    ends, here with the clear error that the pocket's outline has no floor
+    under part of it (its other fillets are not in this floor), and progress
+    comes all along."""
+    with open(os.path.join(DATA, "floors", "plateau_input.json")) as f:
+        data = json.load(f)
+    data["floor"] = {"brep": os.path.join(DATA, "floors", brep)}
+    stages = []
+    with pytest.raises(ValueError, match="no floor under the plunge at"):
+        plunge.plan(data, svg=False, progress=lambda fraction, stage: stages.append(stage) or True)
+    assert "analysing the floor" in stages
