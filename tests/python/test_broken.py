@@ -89,3 +89,33 @@ def test_floor_stock_no_plunger_reaches(plunge):
     assert b["worst"] == pytest.approx(plan["stats"]["max_floor_stock_left"]) and b["worst"] > 1.0
     assert abs(b["at"][0] - 30) < 2  # in the trough
     assert "smaller or ball-end" in said(plan, b)
+
+
+def rounded_square(size, radius, n=16):
+    out = []
+    for cx, cy, a0 in ((size - radius, radius, -90), (size - radius, size - radius, 0),
+                       (radius, size - radius, 90), (radius, radius, 180)):
+        for k in range(n + 1):
+            a = math.radians(a0 + 90.0 * k / n)
+            out.append([cx + radius * math.cos(a), cy + radius * math.sin(a)])
+    return out
+
+
+def test_the_wall_band_above_the_floor(plunge):
+    """The floor's corners are round (R11, the 20 mm plunger fits them), but 5 mm
+    higher the pocket's walls meet square (a section): there the corners keep
+    more than the band. Said at that height, in a corner; the floor's own band
+    is kept and not said."""
+    data = square()
+    data["boundary"] = rounded_square(60, 11)
+    data["sections"] = [{"z": -5, "boundary": square()["boundary"]}]
+    plan = plunge.plan(data)
+    b = broken(plan, "max_wall_stock")
+    assert b is not None and b["worst"] > 1.0
+    x, y = b["at"]
+    assert min(math.hypot(x - cx, y - cy) for cx in (0, 60) for cy in (0, 60)) < 10  # in a corner
+    assert "at -5.00 mm, above the floor" in said(plan, b)
+    # Stops through the section's height keep its band elsewhere: the plunges of the section stop there.
+    assert any(abs(p["z"] - (-5 + 0.2)) < 1e-9 for p in plan["plunges"])
+    data.pop("sections")
+    assert broken(plunge.plan(data), "max_wall_stock") is None
