@@ -46,6 +46,11 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 NIST_PART = os.environ.get("PLUNGE_NIST_PART",
                            os.path.join(ROOT, "tests", "data", "parts", "nist_ctc_02_asme1_rc.stp"))
 REPORTS = os.environ.get("PLUNGE_ALLOWANCE_REPORTS")
+# The long cases (minutes each: hundreds of stops measured on B-spline and
+# public parts, ball tools on blends) run where PLUNGE_ALLOWANCE_FULL=1: CI's
+# native run (.ci/run); the quick ones everywhere.
+FULL = os.environ.get("PLUNGE_ALLOWANCE_FULL") == "1"
+full = pytest.mark.skipif(not FULL, reason="a long case: PLUNGE_ALLOWANCE_FULL=1 runs it")
 PLAN_SECONDS = {}  # planning time per operation, for the reports
 
 # The plungers of each kind: (diameter, corner radius of the bull tools).
@@ -312,7 +317,7 @@ def test_filleted_pocket(doc, tmp_path, radius, kind, floor_stock):
     measured(job, op, "fillet_R%d_%s" % (radius, kind))
 
 
-@pytest.mark.parametrize("kind", ["flat", "bull", "ball"])
+@pytest.mark.parametrize("kind", ["flat", "bull", pytest.param("ball", marks=full)])
 def test_corner_blends(doc, tmp_path, kind):
     """Walls filleted R5, then the floor edges R2: toroidal corner blends."""
     shape = box_pocket(5, 2, together=False)
@@ -321,6 +326,7 @@ def test_corner_blends(doc, tmp_path, kind):
     measured(job, op, "blends_R5_R2_%s" % kind)
 
 
+@full
 @pytest.mark.parametrize("kind", ["flat", "bull", "ball"])
 def test_sculptured_example(doc, tmp_path, kind):
     """The example part: a B-spline floor in a free-form pocket with an island."""
@@ -389,6 +395,7 @@ def test_nist_pocket_floors_found():
     assert fillets, "its largest pocket has no fillets"
 
 
+@full
 @pytest.mark.parametrize("kind", ["flat", "ball"])
 def test_nist_filleted_pocket(doc, tmp_path, kind):
     """The NIST part's largest pocket facing up (its floor found on the part,
