@@ -669,7 +669,8 @@ class Coverer {
     std::vector<Vec2> anchors;
     anchorsOf(p.poly, 0, anchors);
 
-    for (const Vec2& a : anchors)
+    for (const Vec2& a : anchors) {
+      opt_.progress.tick();  // a long piece has many anchors, each its corner placements
       for (int t : sorted_) {
         std::vector<Vec2> centres;
         Vec2 c;
@@ -679,6 +680,7 @@ class Coverer {
         if (core_ && p.area < radii_[t] * radii_[t]) cornerPlacementsNear(a, radii_[t], centres);
         for (const Vec2& x : centres) queueCandidate(x, t, id);
       }
+    }
   }
 
   void cornerPlacementsNear(Vec2 a, double r, std::vector<Vec2>& out) const {

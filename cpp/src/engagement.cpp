@@ -110,7 +110,10 @@ class Targets {
           }
         }
     }
-    for (size_t k = 0; k < points_.size(); ++k) grid_[key(points_[k].p)].push_back(k);
+    for (size_t k = 0; k < points_.size(); ++k) {
+      if (k % 4096 == 0) progress.tick();
+      grid_[key(points_[k].p)].push_back(k);
+    }
     left_ = points_.size();
   }
 
@@ -592,7 +595,10 @@ class Grower {
     // disks would have left elsewhere costs plunges and leaves no less stock.
     if (in_.maxWallStock > 0) {
       const double band = in_.radialAllowance + kWallBand * in_.maxWallStock;
-      targets.forget([&](Vec2 q) { return region_.wallDistance(q, band + 1.0) < band; });
+      targets.forget([&](Vec2 q) {
+        progress_.tick();
+        return region_.wallDistance(q, band + 1.0) < band;
+      });
     }
     const Polygons centres = poly::offset(allowedRegion(region_, in_.radialAllowance), -(r + kCentreMargin));
     // Along a ring, plunges a chord of the band apart: the next ring's offset

@@ -335,8 +335,10 @@ def measure_stop(pf, stop, radial, floor, margin=MARGIN):
         contact = "beside"
         if vertical:
             u = q - p
-            if d > 1e-9 and abs(u.z) > math.hypot(u.x, u.y):
-                contact, need = "over edge", floor  # above a step down's rim
+            # Above a step down's rim (or a hole's in the floor): the wall is all
+            # below the tool, which keeps the floor allowance from the rim.
+            if d > 1e-9 and (abs(u.z) > math.hypot(u.x, u.y) or (p.z >= fbox.ZMax - 1e-6 and u.z > 1e-6)):
+                contact, need = "over edge", floor
         found.append({"face": name, "vertical": vertical, "contact": contact, "distance": d, "need": need,
                       "point": (round(p.x, 3), round(p.y, 3), round(p.z, 3)),
                       "tool_point": (round(q.x, 3), round(q.y, 3), round(q.z, 3))})
