@@ -49,7 +49,6 @@ class Cuts {
   double cell_ = 0.0;  // the bucket size: the largest cut's diameter so far
   std::vector<Cut> cuts_;
   std::unordered_map<long long, std::vector<size_t>> grid_;
-  double largest_ = 0.0;
 };
 
 }  // namespace plunge
