@@ -477,10 +477,12 @@ def tool_spec(tc, max_engagement=100.0, min_engagement=0.0):
         tool["shape"] = "ball"
     elif "bull" in shape:
         corner = None
-        if hasattr(bit, "FlatRadius"):
-            corner = diameter / 2 - float(bit.FlatRadius.Value)
-        elif hasattr(bit, "CornerRadius"):
+        # FreeCAD 1.1's bull nose has CornerRadius (its shape's own; a FlatRadius
+        # left from an older bit file is not drawn), before it FlatRadius.
+        if hasattr(bit, "CornerRadius"):
             corner = float(bit.CornerRadius.Value)
+        elif hasattr(bit, "FlatRadius"):
+            corner = diameter / 2 - float(bit.FlatRadius.Value)
         if corner and 0 < corner <= diameter / 2:
             tool["shape"] = "bull"
             tool["corner_radius"] = corner

@@ -37,6 +37,7 @@ import pytest
 import parts
 import allowance_check as ac
 from freecad_plugin import PlungeRough
+from freecad_plugin import compat
 from freecad_plugin.compat import PathJob, PathToolController, tool_bit_from_file
 
 V = FreeCAD.Vector
@@ -86,8 +87,11 @@ def write_bit(kind, diameter, corner, folder, flute=50.0, length=100.0):
     shape, shape_type = SHAPES[kind]
     params = {"Diameter": "%g mm" % diameter, "ShankDiameter": "%g mm" % diameter,
               "CuttingEdgeHeight": "%g mm" % flute, "Length": "%g mm" % length}
-    if kind == "bull":
-        params["FlatRadius"] = "%g mm" % (diameter / 2.0 - corner)
+    if kind == "bull":  # FreeCAD 1.1's bull nose takes its corner radius, older ones the flat's
+        if compat.version() >= (1, 1):
+            params["CornerRadius"] = "%g mm" % corner
+        else:
+            params["FlatRadius"] = "%g mm" % (diameter / 2.0 - corner)
     name = "%gmm_%s%s_%g" % (diameter, kind, "_r%g" % corner if kind == "bull" else "", length)
     path = os.path.join(folder, name + ".fctb")
     with open(path, "w") as f:
