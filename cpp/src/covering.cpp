@@ -498,6 +498,7 @@ class Coverer {
   // With a band: the core whole (measured as planned, with inscribed disks).
   void coverCore(const Polygons& acc, const Polygons& core) {
     coverResidual(0.0);
+    if (!opt_.measureCore) return;
     measure(acc);
     result_.coreUncovered = uncoveredRegion(core, diskCircles());
   }

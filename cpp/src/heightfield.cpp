@@ -53,16 +53,19 @@ double HeightField::highestAlong(Vec2 a, Vec2 b, double r) const {
   return best;
 }
 
-int HeightField::materialCells(Vec2 c, const Cutter& cutter, double z, double margin) const {
-  int n = 0;
-  forEachMaterialCell(c, cutter, z, margin, [&](Vec2) { ++n; });
-  return n;
+bool HeightField::meetsMaterial(Vec2 c, const Cutter& cutter, double z, double margin) const {
+  bool met = false;
+  forEachMaterialCell(c, cutter, z, margin, [&](Vec2) { return !(met = true); });
+  return met;
 }
 
 double HeightField::bite(Vec2 from, Vec2 c, const Cutter& cutter, double z, double margin) const {
   double deepest = -1.0;
   forEachMaterialCell(c, cutter, z, margin,
-                      [&](Vec2 q) { deepest = std::max(deepest, dist(q, from) - cutter.radius); });
+                      [&](Vec2 q) {
+                        deepest = std::max(deepest, dist(q, from) - cutter.radius);
+                        return true;
+                      });
   return deepest;
 }
 

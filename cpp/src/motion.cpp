@@ -74,19 +74,20 @@ class Touched {
     for (size_t k = 0; k < found.size() && k < count; ++k) out.push_back(found[k].second);
     return out;
   }
-  // How far beyond the hole at c (radius r) a disk of radius r moved to `end`
-  // reaches into material: the largest distance beyond r from c of what of it
-  // no disk cut to `bottom` or deeper covers (polygons; negative: nothing).
-  double bite(Vec2 c, Vec2 end, double r, double bottom) const {
-    std::vector<Circle> cut;
-    const double reach = 2 * r + dist(c, end);
-    forEachDiskNear(end, reach, [&](const Disk& d) {
-      if (d.bottom <= bottom + 1e-9 && dist(d.circle.c, end) < d.circle.r + r) cut.push_back(d.circle);
+  // Whether a disk of radius r moved from the hole at c to `end` reaches more
+  // than `limit` beyond r from c into material: whether any of the crescent
+  // of the moved disk farther than r + limit from c is left uncut by the
+  // disks cut to `bottom` or deeper (polygons, nearest disks first; only the
+  // crescent is clipped, so the booleans stay small).
+  bool grazes(Vec2 c, Vec2 end, double r, double bottom, double limit) const {
+    Polygons rest = poly::subtract({poly::disk({end, r - 0.01})}, {poly::disk({c, r + limit})});
+    if (poly::area(rest) <= 1e-6) return false;
+    std::vector<Circle> near;
+    forEachDiskNear(end, 2 * r, [&](const Disk& d) {
+      if (d.bottom <= bottom + 1e-9 && dist(d.circle.c, end) < d.circle.r + r) near.push_back(d.circle);
     });
-    double deepest = -1.0;
-    for (const Loop& l : poly::subtract({poly::disk({end, r - 0.01})}, poly::unionOfDisks(cut)))
-      for (Vec2 v : l) deepest = std::max(deepest, dist(v, c) - r);
-    return deepest;
+    if (crescentWitness(c, end, r - 0.01, r + limit, near)) return true;
+    return !coveredBy(std::move(rest), end, std::move(near), 1e-6);
   }
   // The highest stock a disk of radius r swept from a to b passes over (an upper bound).
   double highestAlong(Vec2 a, Vec2 b, double r) const {
@@ -135,11 +136,14 @@ class Touched {
   // (more than the polygon test's 1e-4 mm^2): the common case (a move over
   // uncut gaps, a plunge into fresh stock), found without polygon booleans.
   static constexpr double kWitness = 0.01;
+  // The cut disks' polygons in the exact tests: inscribed (they cover less than
+  // the disks), within half the 0.01 mm the moved disk is shrunk by.
+  static constexpr double kCoverChord = 0.005;
   // Whether the disks leave less than 1e-4 mm^2 of `swept` uncut. The disks
   // nearest to `from` first, one at a time, each only if it reaches what is
   // left: the rest shrinks fast, so the booleans stay small (the union of 150
   // disks first, then one difference, cost 20 ms a move where plunges crowd).
-  static bool coveredBy(Polygons rest, Vec2 from, std::vector<Circle> near) {
+  static bool coveredBy(Polygons rest, Vec2 from, std::vector<Circle> near, double tiny = 1e-4) {
     std::stable_sort(near.begin(), near.end(),
                      [&](const Circle& x, const Circle& y) { return dist(x.c, from) < dist(y.c, from); });
     detail::Bounds b;
@@ -147,11 +151,34 @@ class Touched {
     for (const Circle& d : near) {
       if (rest.empty()) break;
       if (d.c.x + d.r < b.lo.x || d.c.x - d.r > b.hi.x || d.c.y + d.r < b.lo.y || d.c.y - d.r > b.hi.y) continue;
-      rest = poly::subtract(rest, {poly::disk(d)});
+      rest = poly::subtract(rest, {poly::disk(d, kCoverChord)});
       b = {};
       for (const Loop& l : rest) b.add(l);
     }
-    return poly::area(rest) <= 1e-4;
+    return poly::area(rest) <= tiny;
+  }
+  // A point of the moved disk (radius rs at end) kWitness inside it, beyond
+  // `beyond` + kWitness from c and kWitness outside every near disk: proof of
+  // uncut material there without polygons (most directions that graze).
+  static bool crescentWitness(Vec2 c, Vec2 end, double rs, double beyond, const std::vector<Circle>& near) {
+    const double inner = rs - kWitness;
+    if (inner <= 0.0) return false;
+    const int n = std::clamp(static_cast<int>(std::ceil(2 * kPi * inner / 0.25)), 24, 512);
+    for (double f : {1.0, 0.98, 0.95}) {
+      for (int k = 0; k < n; ++k) {
+        const double t = 2 * kPi * k / n;
+        const Vec2 q = end + Vec2{std::cos(t), std::sin(t)} * (f * inner);
+        if (dist(q, c) < beyond + kWitness) continue;
+        bool free = true;
+        for (const Circle& d : near)
+          if (dist(q, d.c) < d.r + kWitness) {
+            free = false;
+            break;
+          }
+        if (free) return true;
+      }
+    }
+    return false;
   }
   static bool uncoveredWitness(Vec2 a, Vec2 b, double rs, const std::vector<Circle>& near) {
     auto uncovered = [&](Vec2 q) {
@@ -312,7 +339,7 @@ std::optional<Vec2> leadOutOf(const MotionOptions& in, const Region& region, con
     // Into no material (cells touching the moved disk: the crescent it adds is
     // narrower than a cell), then the exact bound of the stock left.
     const Vec2 end = ends[k].at;
-    if (stock.materialCells(end, cutter, p.z, margin) > 0 ||
+    if (stock.meetsMaterial(end, cutter, p.z, margin) ||
         touched.highestAlong(c, end, cutter.radius) > p.z + cutterProfile(cutter, cutter.radius) + kEngagementSkin)
       continue;
     if (fitsAt(k)) return end;
@@ -323,7 +350,7 @@ std::optional<Vec2> leadOutOf(const MotionOptions& in, const Region& region, con
   // graze less than half the lead-out, measured exactly with their polygons.
   for (size_t k = 0; k < ends.size(); ++k)
     if (!ends[k].towardHole && stock.bite(c, ends[k].at, cutter, p.z) <= 0.5 * L &&
-        touched.bite(c, ends[k].at, r, p.z + cutterProfile(cutter, r)) <= 0.5 * L && fitsAt(k))
+        !touched.grazes(c, ends[k].at, r, p.z + cutterProfile(cutter, r), 0.5 * L) && fitsAt(k))
       return ends[k].at;
   bool room = false;
   for (size_t k = 0; k < ends.size() && !room; ++k) room = fits[k] == 1 || wallsKept(ends[k].at);
@@ -337,7 +364,7 @@ std::optional<Vec2> leadOutOf(const MotionOptions& in, const Region& region, con
     const double highest = p.z + L;
     auto grazes = [&](Vec2 end, double z) {
       return stock.bite(c, end, cutter, z) > 0.5 * L ||
-             touched.bite(c, end, r, z + cutterProfile(cutter, r)) > 0.5 * L;
+             touched.grazes(c, end, r, z + cutterProfile(cutter, r), 0.5 * L);
     };
     // The height each of the first few clear directions needs to graze no
     // more (bisection), then the floor under the way out, lowest first.

@@ -97,6 +97,7 @@ CoverResult placePlunges(const PlanInput& in, const Region& region, const std::v
     co.allowance = in.radialAllowance;
     co.minCoverage = in.minCoverage;
     co.wallStock = in.maxWallStock;
+    co.measureCore = false;  // measured on the final plunges (coverOf)
     co.progress = progress;
     if (in.maxWallStock <= 0.0) return coverRegion(region, radii, packMaxHoleDegree(region, radii, po), co);
     // With a wall band, only the largest tool is packed: the covering then uses a
@@ -170,9 +171,9 @@ void sequence(const PlanInput& in, const std::vector<CutDisk>& disks, Plan& out,
 // than asked for (stock.hpp).
 // The stock samples of the pocket, with the wall band along steps in the floor
 // (a rise of the limit and two sample steps between neighbours: no floor slope).
-StockGrid stockGrid(const PlanInput& in, const Region& region, const FloorSurface& floor, const Plan& out,
+StockGrid stockGrid(const PlanInput& in, const Region& region, const FloorSurface& floor, double regionArea,
                     double smallestRadius, const Progress& progress) {
-  const double spacing = stockSpacing(out.stats.regionArea, smallestRadius);
+  const double spacing = stockSpacing(regionArea, smallestRadius);
   StockGrid grid(region, floor, in.radialAllowance, in.floorAllowance, in.maxWallStock, spacing, progress);
   grid.bandFloorSteps(std::max(in.maxFloorStock, 0.0) + 2.0 * spacing, in.radialAllowance + in.maxWallStock);
   return grid;
@@ -183,7 +184,7 @@ void restStep(const PlanInput& in, const Region& region, const FloorSurface& flo
   std::vector<Cutter> cutters;
   for (const Tool& t : in.tools) cutters.push_back(cutterOf(t));
   if (!isSculptured(in, floor) || in.maxFloorStock <= 0.0) return;
-  StockGrid grid = stockGrid(in, region, floor, out, cutters.back().radius, progress);
+  StockGrid grid = stockGrid(in, region, floor, out.stats.regionArea, cutters.back().radius, progress);
   for (const CutDisk& d : disks) grid.cut(d, cutters[d.tool]);
   progress.stage(0.85, "rest machining in Z");
   RestOptions ro;
@@ -196,35 +197,26 @@ void restStep(const PlanInput& in, const Region& region, const FloorSurface& flo
   disks.insert(disks.end(), rest.added.begin(), rest.added.end());
 }
 
-// The stock the plan's plunges leave on the floor, and the volumes.
-// held: plunges the final depth stopped above the floor.
-void floorStock(const PlanInput& in, const Region& region, const FloorSurface& floor, Plan& out, bool held,
-                const Progress& progress) {
+// The stock the plan's plunges leave on the floor, and the volumes: measured
+// (pure, so it runs beside the motion), then reported.
+struct FloorStockMeasure {
+  StockReport report;
+  std::optional<StockMap> map;  // sculptured floors only
+};
+
+FloorStockMeasure measureFloorStock(const PlanInput& in, const Region& region, const FloorSurface& floor,
+                                    const std::vector<Plunge>& plunges, double regionArea, const Progress& progress) {
   std::vector<Cutter> cutters;
   for (const Tool& t : in.tools) cutters.push_back(cutterOf(t));
-  StockGrid grid = stockGrid(in, region, floor, out, cutters.back().radius, progress);
+  StockGrid grid = stockGrid(in, region, floor, regionArea, cutters.back().radius, progress);
   const ToolTable tools(in.tools);
-  for (const Plunge& p : out.plunges) {
+  for (const Plunge& p : plunges) {
     const int t = static_cast<int>(tools.indexOf(p.toolId));
     grid.cut({{p.x, p.y}, t, p.z}, cutters[t]);
   }
-  const bool sculptured = isSculptured(in, floor);
-  const StockReport r = measureStock(grid, in.topZ);
-  out.stats.maxFloorStockLeft = r.maxFloorStock;
-  out.stats.meanFloorStock = r.meanFloorStock;
-  out.stats.volumeRemoved = r.volumeRemoved;
-  out.stats.volumeLeft = r.volumeLeft;
-  if (sculptured && in.maxFloorStock > 0.0 && r.maxFloorStock > in.maxFloorStock + 1e-6) {
-    std::ostringstream w;
-    w << std::fixed << std::setprecision(2) << "up to " << r.maxFloorStock
-      << " mm of stock stay above the floor, more than the " << in.maxFloorStock << " mm asked for";
-    // Plunges held at the final depth leave that stock by request, not for want of a tool.
-    sayBroken(out, w.str(),
-              {"max_floor_stock", in.maxFloorStock, r.maxFloorStock, r.maxFloorStockAt, 1,
-               held ? "the final depth stops plunges above the floor (a lower final depth would cut it)"
-                    : "no plunger of the job reaches lower there (a smaller or ball-end plunger would)"});
-  }
-  if (!sculptured) return;
+  FloorStockMeasure out;
+  out.report = measureStock(grid, in.topZ);
+  if (!isSculptured(in, floor)) return out;
   // The picture's map: at most about 160 x 160 cells, each the highest stock in it.
   StockMap m;
   const size_t f = std::max<size_t>(1, std::max(grid.nx(), grid.ny()) / 160 + 1);
@@ -239,17 +231,38 @@ void floorStock(const PlanInput& in, const Region& region, const FloorSurface& f
     float& cell = m.stock[(k / grid.nx() / f) * m.nx + (k % grid.nx()) / f];
     if (std::isnan(cell) || s > cell) cell = static_cast<float>(s);
   }
-  out.stockMap = std::move(m);
+  out.map = std::move(m);
+  return out;
+}
+
+// held: plunges the final depth stopped above the floor.
+void reportFloorStock(const PlanInput& in, const FloorStockMeasure& m, Plan& out, bool held) {
+  const StockReport& r = m.report;
+  out.stats.maxFloorStockLeft = r.maxFloorStock;
+  out.stats.meanFloorStock = r.meanFloorStock;
+  out.stats.volumeRemoved = r.volumeRemoved;
+  out.stats.volumeLeft = r.volumeLeft;
+  if (m.map && in.maxFloorStock > 0.0 && r.maxFloorStock > in.maxFloorStock + 1e-6) {
+    std::ostringstream w;
+    w << std::fixed << std::setprecision(2) << "up to " << r.maxFloorStock
+      << " mm of stock stay above the floor, more than the " << in.maxFloorStock << " mm asked for";
+    // Plunges held at the final depth leave that stock by request, not for want of a tool.
+    sayBroken(out, w.str(),
+              {"max_floor_stock", in.maxFloorStock, r.maxFloorStock, r.maxFloorStockAt, 1,
+               held ? "the final depth stops plunges above the floor (a lower final depth would cut it)"
+                    : "no plunger of the job reaches lower there (a smaller or ball-end plunger would)"});
+  }
+  out.stockMap = m.map;
 }
 
 // What the final plunges cut, as a covering's result: the stats describe the
 // plan as made (rest plunges, growth within the limits and levels included).
-CoverResult coverOf(const Plan& out, const Polygons& core) {
+CoverResult coverOf(const std::vector<Plunge>& plunges, const Polygons& accessible, const Polygons& core) {
   CoverResult c;
   std::vector<Circle> circles;
-  for (const Plunge& p : out.plunges) circles.push_back({{p.x, p.y}, 0.5 * p.diameter});
-  c.accessibleArea = poly::area(out.accessible);
-  c.uncovered = uncoveredRegion(out.accessible, circles);
+  for (const Plunge& p : plunges) circles.push_back({{p.x, p.y}, 0.5 * p.diameter});
+  c.accessibleArea = poly::area(accessible);
+  c.uncovered = uncoveredRegion(accessible, circles);
   c.coveredArea = c.accessibleArea - poly::area(c.uncovered);
   c.coreArea = poly::area(core);
   c.coreUncovered = uncoveredRegion(core, circles);
@@ -450,6 +463,7 @@ void wallBandAbove(const PlanInput& in, const DepthSolver& depths, std::vector<C
     co.allowance = in.radialAllowance;
     co.wallStock = in.maxWallStock;
     co.minCoverage = in.minCoverage;
+    co.measureCore = false;  // only the disks added are used
     co.progress = progress;
     const CoverResult cover = coverRegion(region, radii, through, co);
     for (size_t k = through.size(); k < cover.disks.size(); ++k) {
@@ -582,15 +596,34 @@ Plan planWithTools(PlanInput in, const Progress& progress) {
   }
   MotionOptions motion = motionOptions(in, progress);
   out.plunges = splitIntoLevels(out.plunges, motion, out.stats);
-  // Measured on the final plunges (the rest step and the limits add to the covering's).
-  progress.stage(0.95, "measuring the coverage");
-  coverageStats(in, pocket.region, coverOf(out, pocket.core), out);
-  wallBandAboveStats(in, out);
-  progress.stage(0.96, "heights and lead-outs");
-  motion.progress = progress.sub(0.96, 0.98);
+  // Measured on the final plunges (the rest step and the limits add to the
+  // covering's), on another thread with its own floor while the motion is
+  // planned: the moves between the plunges change neither where they cut nor
+  // how deep. Reported in the order of the stages.
+  struct Measures {
+    CoverResult cover;
+    FloorStockMeasure stock;
+  };
+  auto measuring = std::async(std::launch::async, [&, plunges = out.plunges, own = floor->clone()] {
+    return Measures{coverOf(plunges, out.accessible, pocket.core),
+                    measureFloorStock(in, pocket.region, *own, plunges, out.stats.regionArea, progress)};
+  });
+  progress.stage(0.95, "heights and lead-outs");
+  motion.progress = progress.sub(0.95, 0.98);
+  const size_t warned = out.warnings.size(), broken = out.broken.size();
   planMotion(pocket.region, depths, out, motion);
   progress.stage(0.98, "measuring the stock left");
-  floorStock(in, pocket.region, *floor, out, held, progress);
+  const Measures measured = progress.await(measuring);
+  // The motion's warnings after the coverage's.
+  std::vector<std::string> motionWarnings(out.warnings.begin() + warned, out.warnings.end());
+  std::vector<BrokenLimit> motionBroken(out.broken.begin() + broken, out.broken.end());
+  out.warnings.resize(warned);
+  out.broken.resize(broken);
+  coverageStats(in, pocket.region, measured.cover, out);
+  wallBandAboveStats(in, out);
+  out.warnings.insert(out.warnings.end(), motionWarnings.begin(), motionWarnings.end());
+  out.broken.insert(out.broken.end(), motionBroken.begin(), motionBroken.end());
+  reportFloorStock(in, measured.stock, out, held);
   countPlunges(in, out);
   depthFallbacks(depths, out);
   out.stats.planningSeconds = secondsSince(t0);

@@ -40,6 +40,10 @@ struct CoveringOptions {
   // walls is covered (the core), material inside the band may stay, and
   // minCoverage is not used. 0: cover down to minCoverage.
   double wallStock = 0.0;
+  // With a wall band: measure what the disks leave (CoverResult's uncovered,
+  // coveredArea, coreUncovered). A plan that measures its final plunges
+  // anyway skips it.
+  bool measureCore = true;
   Progress progress;  // checked per plunge placed
 };
 

@@ -42,9 +42,9 @@ class HeightField {
   // kEngagementSkin above the cutter's surface. Its radial engagement is
   // measured exactly, not on the raster (cuts.hpp).
   Contact contact(Vec2 c, const Cutter& cutter, double z, double coreRadius = 0.0) const;
-  // Cells of material a cutter at c with its tip at z meets (beyond the skin),
-  // counting cells whose centre lies up to `margin` beyond its radius.
-  int materialCells(Vec2 c, const Cutter& cutter, double z, double margin = 0.0) const;
+  // Whether a cutter at c with its tip at z meets a cell of material (beyond
+  // the skin), counting cells whose centre lies up to `margin` beyond its radius.
+  bool meetsMaterial(Vec2 c, const Cutter& cutter, double z, double margin = 0.0) const;
   // How deep a cutter moved sideways at tip height z from `from` to `c` bites
   // into the stock: the largest distance beyond its radius from `from` of a
   // material cell under it at c (cells up to `margin` beyond its radius
@@ -60,7 +60,9 @@ class HeightField {
 
  private:
   // Calls f(cell centre) for each cell of material (beyond the skin) under a
-  // cutter at c with its tip at z, counting cells up to `margin` beyond its radius.
+  // cutter at c with its tip at z, counting cells up to `margin` beyond its
+  // radius, until f returns false. A cell no higher than z plus the skin holds
+  // none (the cutter's profile is never below its tip): tested first, cheaply.
   template <class F>
   void forEachMaterialCell(Vec2 c, const Cutter& cutter, double z, double margin, F f) const {
     const double r = cutter.radius + margin;
@@ -68,10 +70,12 @@ class HeightField {
     const long j0 = static_cast<long>(std::floor((c.y - r - lo_.y) / h_));
     const long m = static_cast<long>(std::ceil(2 * r / h_)) + 1;
     for (long j = j0; j <= j0 + m; ++j)
-      for (long i = i0; i <= i0 + m; ++i)
-        if (const double rho = dist(centre(i, j), c);
-            rho <= r && at(i, j) > z + cutterProfile(cutter, rho) + kEngagementSkin)
-          f(centre(i, j));
+      for (long i = i0; i <= i0 + m; ++i) {
+        const double a = at(i, j);
+        if (a <= z + kEngagementSkin) continue;
+        if (const double rho = dist(centre(i, j), c); rho <= r && a > z + cutterProfile(cutter, rho) + kEngagementSkin)
+          if (!f(centre(i, j))) return;
+      }
   }
   bool index(Vec2 p, long& i, long& j) const;
   double at(long i, long j) const;

@@ -1,0 +1,628 @@
+"""Plunge Rough against FreeCAD's own Adaptive clearing: the same pockets, the
+same 20 mm tool, both posted with FreeCAD's linuxcnc post and timed from the
+G-code (a table for the README).
+
+Run headless inside FreeCAD, from the repository after the build (README: the
+planner module comes from build/cpp, the addon from the source tree):
+
+    freecadcmd tests/bench/bench_vs_adaptive.py
+
+PLUNGE_BENCH_POCKETS="2,3" runs only those pockets (numbers below),
+PLUNGE_BENCH_CELL the height field's cell (mm, default 0.25),
+PLUNGE_BUILD_DIR another build tree.
+
+Pockets (Part booleans; the floor face is the operations' base, as the tests
+select it): 1 the example part (resources/examples, B-spline floor, free-form
+wall and island, about 25 mm deep), 2 a 120 x 80 pocket 20 mm deep, 3 the same
+60 mm deep, 4 a 140 x 100 pocket 50 mm deep with a round island (D 40), 5 a
+deep narrow pocket, 40 x 100 and 70 mm deep (3.5 x the largest plunger). Each
+is in a block 20 mm wider on every side, 10 mm below the floor. The Job's
+stock is FreeCAD's default box, 1 mm around the part; the demo keeps its 1 mm
+above the part's top too (as resources/examples does), the others have their
+top at the part's top (ExtZpos 0, a faced block): each is as deep as named
+(with 1 mm more a 20 mm pocket is 20.7 mm of cut, one Adaptive layer more at 1 D).
+
+Operations, one Job each, built as tests/freecad builds them
+(example_part.make_job, add_tool_controller, add_plunge_rough: one .fctb
+endmill bit per tool):
+  Plunge Rough   the 20, 12 and 6 mm plungers (tools 2, 3, 4), radial
+                 allowance 0.5 mm, floor allowance 0.3 mm (the demo's), every
+                 other property at its default;
+  Adaptive       FreeCAD's Adaptive (Clearing, Side Inside, StepOver 20 %, no
+                 finishing profile) with the 20 mm tool, StockToLeave = the
+                 radial allowance and FinalDepth = the highest point of the
+                 floor face + the floor allowance: 0.20's Adaptive cuts flat
+                 layers, so a lower final depth would gouge a free-form floor.
+Every tool controller: HorizFeed 1200, VertFeed 300, rapids 5000 mm/min.
+
+Cycle time, from the posted G-code by this file's own reader (G0/G1/G2/G3,
+G81/G82/G83/G73 with G98/G99 expanded into their moves, G4, M6):
+  Model A  every feed move at 1200 mm/min whatever its F; Adaptive StepDown 1 D (20 mm).
+  Model B  the posted F words (1200 horizontal, 300 vertical: the plunges, and
+           Adaptive's helix entries, which FreeCAD feeds at VertFeed);
+           Adaptive StepDown 2 D (40 mm).
+  Both     rapids at 5000 mm/min along their 3D length, 20 s per M6.
+Beside Model B, not used: the planner's own estimate of Plunge Rough
+(stats.estimated_minutes, from the same tool controllers). FreeCAD 0.20's
+CycleTime of an operation is not shown: Path.getCycleTime takes an axis a
+command leaves out as 0, not as where the tool is.
+
+Lower bound: the volume the operations should remove (the pocket less its
+allowances, area A in plan view, mean depth h = volume / A), plunged by the
+largest tool (D) on a hexagonal grid of pitch D:
+    n = A / ((sqrt(3) / 2) D^2)
+    t = n (h / F_plunge + h / 5000 + 0.87 D / 5000) + 20 s
+(each plunge feeds its depth at the model's plunge feed, 1200 or 300 mm/min,
+rapids back up and 0.87 D on; 20 s for the one tool load every program has).
+No plan can cover the pocket with fewer plunges of that tool, nor plunge them
+faster.
+
+Volumes: each posted program is replayed on a numpy height field of the stock
+(cells of PLUNGE_BENCH_CELL; each tool's flat, bull or ball end from its bit),
+every move, rapids included. "Target" is the stock above the part's surface
+dilated by the radial allowance and raised by the floor allowance (the
+pocket less allowances); "left" the stock the program leaves above that;
+"gouge" what it cut below the part's surface (rasterised from a fine mesh).
+Checks (said under the tables when they fail): the G-code's plunges per tool
+equal the plan's, the planner's removed volume the replay's, the volumes
+within 3 % of the target and of each other, no gouge, no rapid through stock.
+
+Tested with FreeCAD 0.20.2 (Debian 12). Adaptive's paths vary a little from
+one run to the next (a few % of its time); Plunge Rough's do not.
+"""
+import importlib
+import math
+import os
+import re
+import sys
+import tempfile
+import time
+from collections import namedtuple
+
+import numpy as np
+from scipy import ndimage
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+BUILD = os.environ.get("PLUNGE_BUILD_DIR", os.path.join(ROOT, "build"))
+for _p in (os.path.join(BUILD, "cpp"), ROOT, os.path.join(ROOT, "resources", "examples")):
+    if _p not in sys.path:
+        sys.path.insert(0, _p)
+
+import FreeCAD  # noqa: E402
+import MeshPart  # noqa: E402
+import Part  # noqa: E402
+
+import example_part  # noqa: E402
+from freecad_plugin import companions, compat  # noqa: E402
+
+V = FreeCAD.Vector
+PLUNGERS = (20.0, 12.0, 6.0)
+RADIAL, FLOOR = 0.5, 0.3
+FEED, PLUNGE_FEED, RAPID = 1200.0, 300.0, 5000.0  # mm/min
+TOOL_CHANGE = 20.0  # s per M6
+CELL = float(os.environ.get("PLUNGE_BENCH_CELL", "0.25"))
+CHECK_TOL = 0.03  # volumes: fraction of the target
+# name, Adaptive StepDown (x D), feed of every feed move (None: the posted F), the lower bound's plunge feed
+Model = namedtuple("Model", "name step_down feed plunge_feed")
+MODELS = (Model("A", 1, FEED, FEED), Model("B", 2, None, PLUNGE_FEED))
+
+
+# -- the pockets -------------------------------------------------------------------
+def box_pocket(width, length, depth, island_diameter=0.0, margin=20.0, below=10.0):
+    """A block with a width x length pocket, depth deep, and a round island in its middle."""
+    block = Part.makeBox(width + 2 * margin, length + 2 * margin, depth + below)
+    cavity = Part.makeBox(width, length, depth + 1, V(margin, margin, below))
+    if island_diameter:
+        centre = V(margin + width / 2, margin + length / 2, below)
+        cavity = cavity.cut(Part.makeCylinder(island_diameter / 2, depth + 1, centre))
+    return block.cut(cavity).removeSplitter()
+
+
+Pocket = namedtuple("Pocket", "name part sculptured stock_above")
+POCKETS = [
+    Pocket("demo (B-spline floor)", lambda: example_part.freeform_part(sculptured=True), True, 1.0),
+    Pocket("120 x 80 x 20", lambda: box_pocket(120, 80, 20), False, 0.0),
+    Pocket("120 x 80 x 60", lambda: box_pocket(120, 80, 60), False, 0.0),
+    Pocket("140 x 100 x 50, island D 40", lambda: box_pocket(140, 100, 50, 40), False, 0.0),
+    Pocket("40 x 100 x 70 (deep, narrow)", lambda: box_pocket(40, 100, 70), False, 0.0),
+]
+
+
+# -- the two Jobs --------------------------------------------------------------------
+def adaptive_module():
+    for name in ("Path.Op.Adaptive", "PathScripts.PathAdaptive"):
+        try:
+            return importlib.import_module(name)
+        except ImportError:
+            continue
+    raise ImportError("FreeCAD's Adaptive operation")
+
+
+def set_feeds(tc):
+    tc.HorizFeed = "%g mm/min" % FEED
+    tc.VertFeed = "%g mm/min" % PLUNGE_FEED
+    tc.HorizRapid = tc.VertRapid = "%g mm/min" % RAPID
+    return tc
+
+
+def set_value(obj, prop, value):
+    """A property set by hand (its default expression, e.g. FinalDepth = OpFinalDepth, cleared)."""
+    obj.setExpression(prop, None)
+    setattr(obj, prop, value)
+
+
+def new_job(pocket, shape, name):
+    doc = FreeCAD.newDocument(name)
+    job = example_part.make_job(doc, shape)
+    job.Stock.ExtZpos = pocket.stock_above
+    doc.recompute()
+    return job, job.Model.Group[0]
+
+
+def plunge_job(pocket, shape, bits):
+    """A Job with the plungers and a Plunge Rough on the floor; seconds of its creation and plan."""
+    job, model = new_job(pocket, shape, "BenchPlunge")
+    for i, d in enumerate(PLUNGERS):
+        set_feeds(example_part.add_tool_controller(job, d, i + 2, bits))
+    face = example_part.floor_face_name(model.Shape, pocket.sculptured)
+    start = time.perf_counter()
+    op, _ = example_part.add_plunge_rough(job, face, (), bits, RadialAllowance=RADIAL, FloorAllowance=FLOOR)
+    seconds = time.perf_counter() - start
+    if not op.PlanData:
+        raise RuntimeError("Plunge Rough made no plan: " + op.Summary)
+    return job, op, seconds
+
+
+def adaptive_job(pocket, shape, bits):
+    """A Job with the 20 mm tool and an Adaptive clearing of the floor face; seconds of its recompute."""
+    job, model = new_job(pocket, shape, "BenchAdaptive")
+    # FreeCAD 0.20 headless: the first operation of a Job with more than one tool
+    # controller fails (PathUtils.findToolController leaves `tc` unbound where the
+    # GUI would ask which one): the unused default tool controller goes first.
+    for default in list(job.Tools.Group):
+        bit = default.Tool
+        job.Document.removeObject(default.Name)
+        job.Document.removeObject(bit.Name)
+    tc = set_feeds(example_part.add_tool_controller(job, PLUNGERS[0], 2, bits))
+    face = example_part.floor_face_name(model.Shape, pocket.sculptured)
+    op = adaptive_module().Create("Adaptive", parentJob=job)
+    op.ToolController = tc
+    op.Base = [(model, [face])]
+    op.OperationType, op.Side, op.StepOver = "Clearing", "Inside", 20
+    op.FinishingProfile = False
+    op.StockToLeave = RADIAL
+    set_value(op, "FinalDepth", model.Shape.getElement(face).BoundBox.ZMax + FLOOR)
+    set_value(op, "StepDown", MODELS[0].step_down * PLUNGERS[0])
+    start = time.perf_counter()
+    job.Document.recompute()
+    seconds = time.perf_counter() - start
+    if len(op.Path.Commands) < 3:
+        raise RuntimeError("Adaptive made no path")
+    return job, op, seconds
+
+
+def post(job):
+    return compat.post_job(job, "linuxcnc", "--no-show-editor")
+
+
+def tools_of(job):
+    """{tool number: (radius, corner radius)} of the Job's tool controllers, from their bits."""
+    tools = {}
+    for tc in job.Tools.Group:
+        bit = tc.Tool
+        r = float(bit.Diameter) / 2
+        shape = compat.bit_shape(bit)
+        if "ball" in shape:
+            rc = r
+        elif "bull" in shape:
+            rc = float(getattr(bit, "CornerRadius", 0) or (r - float(getattr(bit, "FlatRadius", r))))
+        else:
+            rc = 0.0
+        tools[int(tc.ToolNumber)] = (r, rc)
+    return tools
+
+
+# -- the G-code reader -----------------------------------------------------------------
+WORD = re.compile(r"([A-Z])\s*([-+]?[0-9]*\.?[0-9]+)")
+Move = namedtuple("Move", "rapid tool a b feed")  # a, b: (x, y, z)
+Program = namedtuple("Program", "moves tool_changes dwell")
+CANNED = ("G73", "G81", "G82", "G83")
+PECK_CLEARANCE = 0.254  # LinuxCNC's rapid back down above the last peck (0.010 in)
+
+
+def blocks(text):
+    """Each line's words [(letter, value)], comments removed."""
+    for line in text.splitlines():
+        line = re.sub(r"\(.*?\)", "", line).split(";")[0].upper()
+        words = [(k, float(v)) for k, v in WORD.findall(line)]
+        if words:
+            yield words
+
+
+def arc_points(a, b, w, clockwise):
+    """G2/G3 in the XY plane (I J from the start), as chords of at most 5 degrees."""
+    cx, cy = a[0] + w.get("I", 0.0), a[1] + w.get("J", 0.0)
+    r = math.hypot(a[0] - cx, a[1] - cy)
+    t0, t1 = math.atan2(a[1] - cy, a[0] - cx), math.atan2(b[1] - cy, b[0] - cx)
+    sweep = (t0 - t1) % (2 * math.pi) if clockwise else (t1 - t0) % (2 * math.pi)
+    sweep = sweep or 2 * math.pi
+    n = max(1, int(math.ceil(sweep / math.radians(5))))
+    sign = -1 if clockwise else 1
+    return [(cx + r * math.cos(t0 + sign * sweep * k / n), cy + r * math.sin(t0 + sign * sweep * k / n),
+             a[2] + (b[2] - a[2]) * k / n) for k in range(1, n + 1)]
+
+
+class Reader:
+    """Interprets posted G-code (absolute, mm, XY plane) into straight moves."""
+
+    def __init__(self):
+        self.pos = (math.nan,) * 3
+        self.motion, self.feed, self.tool, self.next_tool = None, 0.0, None, None
+        self.retract, self.cycle_z = "G98", None
+        self.moves, self.tool_changes, self.dwell = [], 0, 0.0
+
+    def go(self, target, rapid):
+        # An axis never set yet starts where it is going (no length).
+        a = tuple(t if math.isnan(p) else p for p, t in zip(self.pos, target))
+        if a != target:
+            self.moves.append(Move(rapid, self.tool, a, target, None if rapid else self.feed))
+        self.pos = target
+
+    def block(self, words):
+        codes = ["%s%d" % (k, round(v)) if v == int(v) else "%s%g" % (k, v) for k, v in words if k in "GM"]
+        w = {k: v for k, v in words if k not in "GMN"}
+        self.feed = w.get("F", self.feed)
+        if "T" in w:
+            self.next_tool = int(w["T"])
+        if "M6" in codes:
+            self.tool, self.tool_changes = self.next_tool, self.tool_changes + 1
+        for c in codes:
+            if c in ("G98", "G99"):
+                self.retract = c
+            if c in ("G0", "G1", "G2", "G3", "G80") + CANNED:
+                self.motion = None if c == "G80" else c
+                if c not in CANNED:
+                    self.cycle_z = None
+            if c in ("G20", "G91"):
+                raise ValueError("only mm and absolute coordinates are read: %s" % c)
+        if "G4" in codes:
+            self.dwell += w.get("P", 0.0)
+            return
+        if not any(k in w for k in "XYZ") or self.motion is None:
+            return
+        target = tuple(w.get(k, p) for k, p in zip("XYZ", self.pos))
+        if self.motion in ("G0", "G1"):
+            self.go(target, self.motion == "G0")
+        elif self.motion in ("G2", "G3"):
+            for p in arc_points(self.pos, target, w, self.motion == "G2"):
+                self.go(p, False)
+        else:
+            self.cycle(target, w)
+
+    def cycle(self, target, w):
+        """A drilling cycle's moves: rapid to R, feed down (in pecks of Q for
+        G83/G73), dwell (G82), rapid back to the initial level (G98) or R (G99)."""
+        x, y, z = target
+        if self.cycle_z is None:
+            self.cycle_z = self.pos[2]
+        r = w.get("R", self.cycle_z)
+        clear = max(self.pos[2], r)
+        self.go((self.pos[0], self.pos[1], clear), True)
+        self.go((x, y, clear), True)
+        self.go((x, y, r), True)
+        q = w.get("Q", 0.0) if self.motion in ("G73", "G83") else 0.0
+        depth = r
+        while depth > z + 1e-9:
+            depth = max(z, depth - q) if q > 0 else z
+            self.go((x, y, depth), False)
+            if depth > z + 1e-9:  # clear the chips, then back down just above the last depth
+                self.go((x, y, r if self.motion == "G83" else depth + PECK_CLEARANCE), True)
+                self.go((x, y, depth + PECK_CLEARANCE), True)
+        if self.motion == "G82":
+            self.dwell += w.get("P", 0.0)
+        self.go((x, y, max(self.cycle_z, r) if self.retract == "G98" else r), True)
+
+
+def read_program(text):
+    reader = Reader()
+    for words in blocks(text):
+        reader.block(words)
+    return Program(reader.moves, reader.tool_changes, reader.dwell)
+
+
+def minutes(program, model):
+    """The program's cycle time under a feed model: feeds at the model's feed (or
+    their F), rapids at RAPID (3D length), TOOL_CHANGE per M6, dwells."""
+    feed = rapid = 0.0
+    for m in program.moves:
+        length = math.dist(m.a, m.b)
+        if m.rapid:
+            rapid += length / RAPID
+        else:
+            rate = model.feed or m.feed
+            if not rate:
+                raise ValueError("a feed move without F")
+            feed += length / rate
+    changes = program.tool_changes * TOOL_CHANGE / 60.0
+    return {"total": feed + rapid + changes + program.dwell / 60.0, "feed": feed, "rapid": rapid, "changes": changes}
+
+
+def plunges_per_tool(program):
+    """Feeds straight down (Z only); a further feed down at the same X Y with no
+    move sideways since (a pecked hole) goes on with the same plunge."""
+    counts, moved = {}, True
+    for m in program.moves:
+        sideways = abs(m.a[0] - m.b[0]) > 1e-6 or abs(m.a[1] - m.b[1]) > 1e-6
+        if sideways:
+            moved = True
+        elif not m.rapid and m.b[2] < m.a[2] - 1e-6:
+            if moved:
+                counts[m.tool] = counts.get(m.tool, 0) + 1
+            moved = False
+    return counts
+
+
+# -- the height field ---------------------------------------------------------------------
+class Stock:
+    """The stock's top as a height field (cell centres), cut by tool moves."""
+
+    def __init__(self, box, cell):
+        self.cell, self.x0, self.y0, self.top = cell, box.XMin, box.YMin, box.ZMax
+        nx, ny = int(math.ceil(box.XLength / cell)), int(math.ceil(box.YLength / cell))
+        self.xs = box.XMin + (np.arange(nx) + 0.5) * cell
+        self.ys = box.YMin + (np.arange(ny) + 0.5) * cell
+        self.z = np.full((ny, nx), box.ZMax)
+
+    def cut(self, a, b, tool):
+        """Sweep the tool (radius, corner radius) from a to b; the volume it removes (mm3).
+        A move that also changes Z is cut in pieces of at most half a cell in Z, each at its higher end."""
+        if min(a[2], b[2]) >= self.top:
+            return 0.0
+        if abs(a[0] - b[0]) < 1e-9 and abs(a[1] - b[1]) < 1e-9:
+            return self.sweep(a, a, min(a[2], b[2]), tool)
+        n = max(1, int(math.ceil(abs(b[2] - a[2]) / (self.cell / 2))))
+        pts = [tuple(a[i] + (b[i] - a[i]) * k / n for i in range(3)) for k in range(n + 1)]
+        return sum(self.sweep(p, q, max(p[2], q[2]), tool) for p, q in zip(pts, pts[1:]))
+
+    def sweep(self, a, b, z, tool):
+        r, rc = tool
+        i0, i1 = self.index(min(a[0], b[0]) - r, self.x0), self.index(max(a[0], b[0]) + r, self.x0) + 1
+        j0, j1 = self.index(min(a[1], b[1]) - r, self.y0), self.index(max(a[1], b[1]) + r, self.y0) + 1
+        i0, j0, i1, j1 = max(i0, 0), max(j0, 0), min(i1, len(self.xs)), min(j1, len(self.ys))
+        if i0 >= i1 or j0 >= j1:
+            return 0.0
+        d = segment_distance(self.xs[None, i0:i1], self.ys[j0:j1, None], a, b)
+        t = np.clip(d - (r - rc), 0.0, rc)
+        height = np.where(d <= r, z + rc - np.sqrt(np.maximum(rc * rc - t * t, 0.0)), np.inf)
+        window = self.z[j0:j1, i0:i1]  # a view: cut in place
+        removed = float(np.maximum(window - height, 0.0).sum()) * self.cell ** 2
+        np.minimum(window, height, out=window)
+        return removed
+
+    def index(self, v, origin):
+        return int(math.floor((v - origin) / self.cell))
+
+
+def segment_distance(x, y, a, b):
+    dx, dy = b[0] - a[0], b[1] - a[1]
+    ll = dx * dx + dy * dy
+    t = 0.0 if ll == 0 else np.clip(((x - a[0]) * dx + (y - a[1]) * dy) / ll, 0.0, 1.0)
+    return np.hypot(x - a[0] - t * dx, y - a[1] - t * dy)
+
+
+def replay(program, stock, tools):
+    """Cut every move; volumes removed by feeds and by rapids, and the feed length that cut nothing."""
+    feed = rapid = air = 0.0
+    for m in program.moves:
+        v = stock.cut(m.a, m.b, tools[m.tool])
+        if m.rapid:
+            rapid += v
+        else:
+            feed += v
+            air += math.dist(m.a, m.b) if v < 1.0 else 0.0  # below 1 mm3: feeding through air
+    return {"removed": feed + rapid, "by_rapids": rapid, "air_length": air,
+            "feed_length": sum(math.dist(m.a, m.b) for m in program.moves if not m.rapid)}
+
+
+def part_surface(shape, stock):
+    """The part's top surface z at each cell (the highest upward facet of a fine
+    mesh over the cell centre); the stock's top where no part is."""
+    mesh = MeshPart.meshFromShape(Shape=shape, LinearDeflection=0.02, AngularDeflection=0.1)
+    points, facets = mesh.Topology
+    p = np.array([[v.x, v.y, v.z] for v in points])[np.array(facets)]
+    normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    up = normal[:, 2] > 1e-3 * np.linalg.norm(normal, axis=1)  # walls (normal z about 0) cast no surface
+    surface = np.full(stock.z.shape, -np.inf)
+    for tri in p[up]:
+        raster_triangle(surface, stock, tri)
+    surface[np.isinf(surface)] = stock.top
+    return surface
+
+
+def raster_triangle(surface, stock, tri):
+    i0, i1 = stock.index(tri[:, 0].min(), stock.x0), stock.index(tri[:, 0].max(), stock.x0) + 1
+    j0, j1 = stock.index(tri[:, 1].min(), stock.y0), stock.index(tri[:, 1].max(), stock.y0) + 1
+    i0, j0, i1, j1 = max(i0, 0), max(j0, 0), min(i1 + 1, len(stock.xs)), min(j1 + 1, len(stock.ys))
+    if i0 >= i1 or j0 >= j1:
+        return
+    x, y = np.meshgrid(stock.xs[i0:i1], stock.ys[j0:j1])
+    (x0, y0, z0), (x1, y1, z1), (x2, y2, z2) = tri
+    det = (y1 - y2) * (x0 - x2) + (x2 - x1) * (y0 - y2)
+    l0 = ((y1 - y2) * (x - x2) + (x2 - x1) * (y - y2)) / det
+    l1 = ((y2 - y0) * (x - x2) + (x0 - x2) * (y - y2)) / det
+    l2 = 1 - l0 - l1
+    inside = (l0 >= -1e-9) & (l1 >= -1e-9) & (l2 >= -1e-9)
+    z = np.where(inside, l0 * z0 + l1 * z1 + l2 * z2, -np.inf)
+    surface[j0:j1, i0:i1] = np.maximum(surface[j0:j1, i0:i1], z)
+
+
+def target_surface(surface, part_top, cell):
+    """The lowest the roughing may go: the part's surface dilated by the radial
+    allowance and raised by the floor allowance; and the pocket's cells (below the part's top)."""
+    k = int(math.ceil(RADIAL / cell))
+    yy, xx = np.mgrid[-k:k + 1, -k:k + 1]
+    target = ndimage.grey_dilation(surface, footprint=np.hypot(xx, yy) * cell <= RADIAL + 1e-9) + FLOOR
+    return target, target < part_top - 1e-6
+
+
+def volumes(stock, surface, target, pocket):
+    """mm3 left above the target in the pocket, and cut below the part's surface."""
+    cell2 = stock.cell ** 2
+    return {"left": float(np.maximum(stock.z - target, 0)[pocket].sum()) * cell2,
+            "gouge": float(np.maximum(surface - stock.z, 0).sum()) * cell2}
+
+
+# -- one pocket ---------------------------------------------------------------------------------
+def lower_bound(area, volume, model):
+    """Minutes to plunge the volume on a hexagonal grid of pitch D (the docstring's formula)."""
+    d = PLUNGERS[0]
+    n = area / (math.sqrt(3) / 2 * d * d)
+    h = volume / area
+    return n * (h / model.plunge_feed + h / RAPID + 0.87 * d / RAPID) + TOOL_CHANGE / 60.0
+
+
+def measure(text, job, geometry):
+    """A posted program read back, timed under both models and replayed on a fresh stock."""
+    program = read_program(text)
+    stock = Stock(geometry["box"], CELL)
+    cut = replay(program, stock, tools_of(job))
+    cut.update(volumes(stock, geometry["surface"], geometry["target"], geometry["pocket"]))
+    cut["plunges"] = plunges_per_tool(program)
+    cut["tool_changes"] = program.tool_changes
+    cut["layers"] = len({round(m.b[2], 3) for m in program.moves if not m.rapid and m.a[2] == m.b[2]})
+    return program, cut
+
+
+def pocket_geometry(job):
+    """The part's surface, the target surface and the pocket's cells on a grid of the Job's stock."""
+    stock = Stock(job.Stock.Shape.BoundBox, CELL)
+    shape = job.Model.Group[0].Shape
+    surface = part_surface(shape, stock)
+    target, pocket = target_surface(surface, shape.BoundBox.ZMax, CELL)
+    cell2 = CELL ** 2
+    return {"box": job.Stock.Shape.BoundBox, "surface": surface, "target": target, "pocket": pocket,
+            "area": float(pocket.sum()) * cell2, "volume": float((stock.top - target)[pocket].sum()) * cell2}
+
+
+def bench_pocket(name, pocket, bits):
+    shape = pocket.part()
+    # As FreeCAD's GUI shows the part before a Job is made of it: a curved face's
+    # bounding box, from which the Job's default stock is made, is tight only then.
+    shape.tessellate(0.1)
+    result = {"name": name}
+    job, op, result["plunge_seconds"] = plunge_job(pocket, shape, bits)
+    result["plan"] = companions.plan_of(op)
+    geometry = result["geometry"] = pocket_geometry(job)
+    program, result["plunge"] = measure(post(job), job, geometry)
+    result["plunge_minutes"] = {m.name: minutes(program, m) for m in MODELS}
+    FreeCAD.closeDocument(job.Document.Name)
+
+    job, op, result["adaptive_seconds"] = adaptive_job(pocket, shape, bits)
+    result["same_stock"] = job.Stock.Shape.BoundBox.isInside(geometry["box"]) and \
+        geometry["box"].isInside(job.Stock.Shape.BoundBox)
+    result["adaptive"], result["adaptive_minutes"] = {}, {}
+    for model in MODELS:
+        set_value(op, "StepDown", model.step_down * PLUNGERS[0])
+        job.Document.recompute()
+        program, result["adaptive"][model.name] = measure(post(job), job, geometry)
+        result["adaptive_minutes"][model.name] = minutes(program, model)
+    FreeCAD.closeDocument(job.Document.Name)
+    result["bound"] = {m.name: lower_bound(geometry["area"], geometry["volume"], m) for m in MODELS}
+    return result
+
+
+# -- the report ------------------------------------------------------------------------------------
+def checks(r):
+    """What does not hold of a pocket's results, one line each."""
+    notes = [] if r["same_stock"] else ["the two Jobs' stocks differ (the replay uses the Plunge Job's)"]
+    target = r["geometry"]["volume"]
+    planned = {}
+    for p in r["plan"]["plunges"]:
+        planned[p["tool_id"]] = planned.get(p["tool_id"], 0) + 1
+    if planned != r["plunge"]["plunges"]:
+        notes.append("G-code plunges per tool %s, the plan's %s" % (r["plunge"]["plunges"], planned))
+    own = r["plan"]["stats"]["volume_removed"]
+    if abs(own - r["plunge"]["removed"]) > CHECK_TOL * target:
+        notes.append("the planner says %.1f cm3 removed, the replay %.1f" % (own / 1e3, r["plunge"]["removed"] / 1e3))
+    runs = [("Plunge Rough", r["plunge"])] + [("Adaptive " + k, v) for k, v in r["adaptive"].items()]
+    for label, cut in runs:
+        if abs(cut["removed"] - target) > CHECK_TOL * target:
+            notes.append("%s removed %.1f cm3, %.1f %% of the target %.1f cm3 (leaves %.1f cm3 above it)"
+                         % (label, cut["removed"] / 1e3, 100 * cut["removed"] / target, target / 1e3,
+                            cut["left"] / 1e3))
+        if cut["gouge"] > 0.01 * target / 100:
+            notes.append("%s cut %.2f cm3 below the part's surface" % (label, cut["gouge"] / 1e3))
+        if cut["by_rapids"] > 1e3 * 0.01:
+            notes.append("%s: rapids through %.2f cm3 of stock" % (label, cut["by_rapids"] / 1e3))
+    a = r["adaptive"][MODELS[0].name]["removed"]
+    if abs(r["plunge"]["removed"] - a) > CHECK_TOL * target:
+        notes.append("Plunge Rough and Adaptive removed %.1f and %.1f cm3: %.1f %% apart"
+                     % (r["plunge"]["removed"] / 1e3, a / 1e3, 100 * abs(r["plunge"]["removed"] - a) / target))
+    return notes
+
+
+def volume_table(results):
+    print("| pocket | target cm3 (area cm2) | removed: Plunge / Adaptive cm3 | left above target: Plunge / "
+          "Adaptive cm3 | plunges (T2/T3/T4), levels | Adaptive layers A / B | planning s: Plunge / Adaptive |")
+    print("|---|---|---|---|---|---|---|")
+    for r in results:
+        g, p, a = r["geometry"], r["plunge"], r["adaptive"]
+        print("| %s | %.1f (%.1f) | %.1f / %.1f | %.1f / %.1f | %d (%s), %d | %s | %.1f / %.1f |" % (
+            r["name"], g["volume"] / 1e3, g["area"] / 1e2, p["removed"] / 1e3, a["A"]["removed"] / 1e3,
+            p["left"] / 1e3, a["A"]["left"] / 1e3, sum(p["plunges"].values()),
+            "/".join(str(p["plunges"].get(t, 0)) for t in (2, 3, 4)), r["plan"]["stats"]["levels"],
+            " / ".join(str(a[m.name]["layers"]) for m in MODELS), r["plunge_seconds"], r["adaptive_seconds"]))
+
+
+def time_table(results):
+    print("| pocket | model | Plunge min (feed / rapid / M6) | Adaptive min (feed / rapid / M6) | lower bound min | "
+          "Plunge / Adaptive | Plunge / bound | feed in air: Plunge / Adaptive | planner's estimate min |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for r in results:
+        for m in MODELS:
+            p, a, b = r["plunge_minutes"][m.name], r["adaptive_minutes"][m.name], r["bound"][m.name]
+            air = [c["air_length"] / max(c["feed_length"], 1e-9) for c in (r["plunge"], r["adaptive"][m.name])]
+            estimate = "-" if m.feed else "%.1f" % r["plan"]["stats"]["estimated_minutes"]
+            print("| %s | %s | %.1f (%.1f / %.1f / %.1f) | %.1f (%.1f / %.1f / %.1f) | %.1f | %.2f | %.2f | "
+                  "%.0f %% / %.0f %% | %s |" % (
+                      r["name"], m.name, p["total"], p["feed"], p["rapid"], p["changes"], a["total"], a["feed"],
+                      a["rapid"], a["changes"], b, p["total"] / a["total"], p["total"] / b, 100 * air[0],
+                      100 * air[1], estimate))
+
+
+def selected_pockets():
+    wanted = os.environ.get("PLUNGE_BENCH_POCKETS")
+    numbers = [int(n) for n in wanted.split(",")] if wanted else range(1, len(POCKETS) + 1)
+    return [(n, POCKETS[n - 1]) for n in numbers]
+
+
+def main():
+    FreeCAD.Units.setSchema(6)  # mm, mm/min (the workbench's preference; this session only)
+    results = []
+    with tempfile.TemporaryDirectory() as bits:
+        for n, pocket in selected_pockets():
+            start = time.perf_counter()
+            results.append(bench_pocket("%d %s" % (n, pocket.name), pocket, bits))
+            print("pocket %d done in %.0f s" % (n, time.perf_counter() - start), file=sys.stderr, flush=True)
+    print("\nFreeCAD %s, height field cell %g mm\n" % (".".join(FreeCAD.Version()[:3]), CELL))
+    volume_table(results)
+    print()
+    time_table(results)
+    notes = [(r["name"], n) for r in results for n in checks(r)]
+    print("\nchecks (the G-code's plunges per tool = the plan's, the planner's volume = the replay's, volumes "
+          "within %g %% of the target and of each other, no gouge, no rapid through stock): %s"
+          % (100 * CHECK_TOL, "all hold" if not notes else "these do not hold"))
+    for name, note in notes:
+        print("- %s: %s" % (name, note))
+
+
+try:
+    main()
+except Exception:
+    import traceback
+    traceback.print_exc()  # freecadcmd itself prints only the exception's message
+    raise
+finally:
+    # FreeCAD 1.1 drops what is still buffered when the script ends.
+    sys.stdout.flush()
+    sys.stderr.flush()
