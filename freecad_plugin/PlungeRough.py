@@ -30,7 +30,10 @@ translate = FreeCAD.Qt.translate
 SETUP_PROPERTIES = ["IncludeFillets", "RadialAllowance", "FloorAllowance", "ChordTolerance", "UseCannedCycle",
                     "PeckEnabled", "PeckDepth", "DwellTime",
                     "MinCoverage", "AutoSelectTools", "Strategy", "MaxWallStock", "MaxFloorStock", "LeadOut",
-                    "StockAwareHeights", "MaxEngagement", "MinEngagement"]
+                    "StockAwareHeights", "MaxEngagement", "MinEngagement", "ToolChangeTime", "GrowthPattern"]
+
+# GrowthPattern property values -> the planner's "growth_pattern".
+GROWTH_PATTERNS = {"Auto": "auto", "Rows": "rows", "Offsets": "offsets"}
 
 # Strategy property values -> the planner's "strategy" and "grid" input.
 STRATEGIES = {
@@ -174,6 +177,15 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         _add(obj, "App::PropertyBool", "AutoSelectTools",
              "Let the planner choose which of the plungers to use (shortest estimated time); the others stay idle",
              False)
+        _add(obj, "App::PropertyFloat", "ToolChangeTime",
+             "Seconds one tool change takes on the machine: the automatic tool choice weighs it against the "
+             "minutes a plunger saves", 20.0)
+        if not hasattr(obj, "GrowthPattern"):
+            _add(obj, "App::PropertyEnumeration", "GrowthPattern",
+                 "With a Max Engagement: how the cut grows from its starts, along rows, along offsets of the walls, "
+                 "or whichever plans fewer plunges (Auto)")
+            obj.GrowthPattern = list(GROWTH_PATTERNS)
+            obj.GrowthPattern = "Auto"
         if not hasattr(obj, "Strategy"):
             _add(obj, "App::PropertyEnumeration", "Strategy",
                  "Packing and covering (default), or a regular grid of plunges (the baseline CAM systems offer)")
@@ -353,7 +365,7 @@ def build_input(obj, tcs, faces, workdir, notes=None):
         "islands": pocket.islands,
         "tools": [geometry.tool_spec(tc, obj.MaxEngagement, obj.MinEngagement) for tc in tcs],
         # Rapids and retracts at the first plunger's rapid rates, as the post runs them.
-        "time_model": time_model(tcs[0]),
+        "time_model": time_model(tcs[0], getattr(obj, "ToolChangeTime", 20.0)),
         "top_z": obj.StartDepth.Value,
         "safe_z": obj.SafeHeight.Value,
         "floor": geometry.floor_spec(pocket, obj.FinalDepth.Value, workdir),
@@ -370,6 +382,7 @@ def build_input(obj, tcs, faces, workdir, notes=None):
         "lead_out": 0.0 if obj.UseCannedCycle else obj.LeadOut.Value,
         "stock_aware_heights": bool(obj.StockAwareHeights and not obj.UseCannedCycle),
         "peck": bool(obj.PeckEnabled),
+        "growth_pattern": GROWTH_PATTERNS.get(getattr(obj, "GrowthPattern", "Auto"), "auto"),
     }
     if sections:
         data["sections"] = sections
@@ -427,9 +440,10 @@ def canned_cycle_warning(obj):
     return None
 
 
-def time_model(tc):
-    """The planner's time model from a tool controller's rapid rates (defaults when unset)."""
-    model = {}
+def time_model(tc, tool_change_seconds=20.0):
+    """The planner's time model from a tool controller's rapid rates (defaults
+    when unset) and the operation's tool change time."""
+    model = {"tool_change_seconds": max(0.0, float(tool_change_seconds))}
     for key, prop in (("rapid_rate", "HorizRapid"), ("retract_rate", "VertRapid")):
         value = getattr(tc, prop).getValueAs("mm/min").Value if hasattr(tc, prop) else 0.0
         if value > 0:

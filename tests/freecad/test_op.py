@@ -135,11 +135,15 @@ def test_build_input_is_the_planner_input_of_the_properties(doc, tmp_path):
     assert (min(xs), max(xs), min(ys), max(ys)) == pytest.approx((10, 150, 10, 90))
     assert len(data["islands"]) == 2
     # The options as the planner's keys.
+    assert data["growth_pattern"] == "auto" and data["time_model"]["tool_change_seconds"] == 20.0
     op.UseCannedCycle = True
     op.Strategy = "Grid (square)"
     op.AutoSelectTools = True
+    op.GrowthPattern = "Offsets"
+    op.ToolChangeTime = 45.0
     data = PlungeRough.build_input(op, plungers, faces, str(tmp_path))
     schema.validate(data)
+    assert data["growth_pattern"] == "offsets" and data["time_model"]["tool_change_seconds"] == 45.0
     assert data["lead_out"] == 0.0 and data["stock_aware_heights"] is False
     assert data["strategy"] == "grid" and data["grid"] == {"pattern": "square"}
     assert data["tools"] == "auto" and [t["diameter"] for t in data["tool_library"]] == [20, 12, 6]
@@ -206,6 +210,10 @@ def test_saved_and_restored(doc, tmp_path):
     job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
     count = PlungeRough.plan_of(op)["stats"]["plunge_count"]
     name = op.Name
+    # A file from before the growth pattern and tool change time: both come
+    # back with their defaults (the plan as it was planned).
+    for prop in ("GrowthPattern", "ToolChangeTime"):
+        op.removeProperty(prop)
     path = str(tmp_path / "plunge.FCStd")
     doc.saveAs(path)
     FreeCAD.closeDocument(doc.Name)
@@ -214,6 +222,7 @@ def test_saved_and_restored(doc, tmp_path):
         op2 = again.getObject(name)
         assert isinstance(op2.Proxy, PlungeRough.ObjectPlungeRough)
         assert op2.RadialAllowance.Value == 0.5 and len(op2.ToolControllers) == 3
+        assert op2.GrowthPattern == "Auto" and op2.ToolChangeTime == 20.0
         op2.touch()
         again.recompute()
         assert PlungeRough.plan_of(op2)["stats"]["plunge_count"] == count
