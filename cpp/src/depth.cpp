@@ -102,14 +102,6 @@ double cornerMaximum(const std::function<double(Vec2)>& lift, Vec2 c, const Cutt
 
 }  // namespace
 
-double cutterProfile(const Cutter& c, double rho) {
-  rho = std::clamp(rho, 0.0, c.radius);
-  const double rc = c.shape == CutterShape::Ball ? c.radius : c.shape == CutterShape::Bull ? c.cornerRadius : 0.0;
-  const double flat = c.radius - rc;
-  if (rho <= flat) return 0.0;
-  const double t = rho - flat;
-  return rc - std::sqrt(std::max(0.0, rc * rc - t * t));
-}
 
 DepthSolver::DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spacing, const Progress& progress)
     : floor_(floor), spacing_(spacing) {

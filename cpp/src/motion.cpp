@@ -80,7 +80,9 @@ class Touched {
   // disks cut to `bottom` or deeper (polygons, nearest disks first; only the
   // crescent is clipped, so the booleans stay small).
   bool grazes(Vec2 c, Vec2 end, double r, double bottom, double limit) const {
-    Polygons rest = poly::subtract({poly::disk({end, r - 0.01})}, {poly::disk({c, r + limit})});
+    // The inner disk's polygon (inscribed) grown by its chord error: it holds the whole circle.
+    Polygons rest =
+        poly::subtract({poly::disk({end, r - 0.01})}, {poly::disk({c, r + limit + poly::kArcTolerance})});
     if (poly::area(rest) <= 1e-6) return false;
     std::vector<Circle> near;
     forEachDiskNear(end, 2 * r, [&](const Disk& d) {

@@ -230,10 +230,11 @@ class RestStep {
 
   // Over-limit samples a plunge fixes.
   int score(const CutDisk& d) const {
-    const double r = cutters_[d.tool].radius;
+    const Cutter& c = cutters_[d.tool];
     int s = 0;
-    grid_.forEachIn(d.center - Vec2{r, r}, d.center + Vec2{r, r}, [&](size_t q) {
-      if (isOver_[q] && fixes(d, q)) ++s;
+    // fixes(d, q), with the distance the disk's walk gives.
+    grid_.forEachInDisk(d.center, c.radius - h_, [&](size_t q, double rho) {
+      if (isOver_[q] && d.z + cutterProfile(c, rho + h_) <= grid_.floorAt(q) + target_) ++s;
     });
     return s;
   }
@@ -242,9 +243,8 @@ class RestStep {
   double lowestStop(Vec2 c, size_t t) const {
     const Cutter& cut = cutters_[t];
     double low = -std::numeric_limits<double>::infinity();
-    grid_.forEachIn(c - Vec2{cut.radius, cut.radius}, c + Vec2{cut.radius, cut.radius}, [&](size_t q) {
-      const double rho = dist(grid_.at(q), c);
-      if (rho <= cut.radius && grid_.valid(q)) low = std::max(low, grid_.floorAt(q) - cutterProfile(cut, rho));
+    grid_.forEachInDisk(c, cut.radius, [&](size_t q, double rho) {
+      if (grid_.valid(q)) low = std::max(low, grid_.floorAt(q) - cutterProfile(cut, rho));
     });
     return low;
   }

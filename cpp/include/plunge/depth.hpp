@@ -9,6 +9,8 @@
 // plungers (drop-cutter) maximise floor height minus the tool's profile over
 // the disk, started from the grid and from the floor's peaks.
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <memory>
 #include <string>
@@ -20,8 +22,17 @@
 
 namespace plunge {
 
-// Height of the cutter's lower surface above its tip at distance rho from its axis.
-double cutterProfile(const Cutter& cutter, double rho);
+// Height of the cutter's lower surface above its tip at distance rho from its
+// axis. Inline: the rasters call it per cell.
+inline double cutterProfile(const Cutter& c, double rho) {
+  if (c.shape == CutterShape::Flat) return 0.0;
+  rho = std::clamp(rho, 0.0, c.radius);
+  const double rc = c.shape == CutterShape::Ball ? c.radius : c.cornerRadius;
+  const double flat = c.radius - rc;
+  if (rho <= flat) return 0.0;
+  const double t = rho - flat;
+  return rc - std::sqrt(std::max(0.0, rc * rc - t * t));
+}
 
 class DepthSolver {
  public:

@@ -71,6 +71,22 @@ class StockGrid {
     for (long j = j0; j <= j1; ++j)
       for (long i = i0; i <= i1; ++i) f(static_cast<size_t>(j) * nx_ + static_cast<size_t>(i));
   }
+  // Sample indices within r of c, with their distance from c (row spans: no
+  // test per sample outside the disk).
+  template <class F>
+  void forEachInDisk(Vec2 c, double r, F&& f) const {
+    const long j0 = std::max(0L, static_cast<long>(std::ceil((c.y - r - origin_.y) / spacing_)));
+    const long j1 = std::min(static_cast<long>(ny_) - 1, static_cast<long>(std::floor((c.y + r - origin_.y) / spacing_)));
+    for (long j = j0; j <= j1; ++j) {
+      const double dy = origin_.y + j * spacing_ - c.y, half = std::sqrt(std::max(0.0, r * r - dy * dy));
+      const long i0 = std::max(0L, static_cast<long>(std::ceil((c.x - half - origin_.x) / spacing_)));
+      const long i1 = std::min(static_cast<long>(nx_) - 1, static_cast<long>(std::floor((c.x + half - origin_.x) / spacing_)));
+      for (long i = i0; i <= i1; ++i) {
+        const double dx = origin_.x + i * spacing_ - c.x, rho = std::sqrt(dx * dx + dy * dy);
+        if (rho <= r) f(static_cast<size_t>(j) * nx_ + static_cast<size_t>(i), rho);
+      }
+    }
+  }
   // The sample nearest to p, if p lies on the raster (false outside it).
   bool nearest(Vec2 p, size_t& k) const {
     const long i = std::lround((p.x - origin_.x) / spacing_), j = std::lround((p.y - origin_.y) / spacing_);
