@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepTools.hxx>
@@ -8,7 +10,10 @@
 #include <GeomAPI_PointsToBSplineSurface.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <TColgp_Array2OfPnt.hxx>
+#include <TopoDS.hxx>
 #include <TopoDS_Compound.hxx>
+#include <gp_Circ.hxx>
+#include <gp_Pln.hxx>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -132,6 +137,67 @@ TEST(Depth, BsplineFaceFromOcct) {
   for (int i = 0; i < 25; ++i) expectTight(*floor, solver, {ux(rng), uy(rng)}, {CutterShape::Flat, 3.0 + i % 6, 0});
   expectTight(*floor, solver, {30, 40}, {CutterShape::Flat, 5, 0});
   expectTight(*floor, solver, {30, 40}, {CutterShape::Ball, 5, 5});
+}
+
+TEST(Depth, TrimmedFaceInsideAndOutside) {
+  // A plane face z = -10 bounded by a star (concave corners) with a round hole
+  // and a triangular hole: where the floor is (not NaN) against the analytic
+  // region, at random points and on a fine row grid, away from the boundary by
+  // more than 1e-4 mm (the face's own tolerance is 1e-7).
+  std::vector<Vec2> star;
+  for (int k = 0; k < 14; ++k) {
+    const double a = 2 * kPi * k / 14, r = k % 2 ? 22.0 : 40.0;
+    star.push_back({50 + r * std::cos(a), 50 + r * std::sin(a)});
+  }
+  const std::vector<Vec2> tri{{38, 40}, {44, 40}, {41, 46}};
+  auto polygonWire = [](const std::vector<Vec2>& pts) {
+    BRepBuilderAPI_MakePolygon p;
+    for (Vec2 q : pts) p.Add(gp_Pnt(q.x, q.y, -10));
+    p.Close();
+    return p.Wire();
+  };
+  const gp_Circ hole(gp_Ax2(gp_Pnt(58, 55, -10), gp_Dir(0, 0, 1)), 6);
+  BRepBuilderAPI_MakeFace mk(gp_Pln(gp_Pnt(0, 0, -10), gp_Dir(0, 0, 1)), polygonWire(star));
+  mk.Add(TopoDS::Wire(BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(hole)).Wire().Reversed()));
+  mk.Add(TopoDS::Wire(polygonWire(tri).Reversed()));
+  ASSERT_TRUE(mk.IsDone());
+  std::ostringstream s;
+  BRepTools::Write(mk.Face(), s);
+  const auto floor = makeBrepFloorFromText(s.str());
+  auto inPolygon = [](const std::vector<Vec2>& poly, Vec2 p) {
+    bool in = false;
+    for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
+      if ((poly[i].y > p.y) != (poly[j].y > p.y) &&
+          p.x < poly[j].x + (p.y - poly[j].y) * (poly[i].x - poly[j].x) / (poly[i].y - poly[j].y))
+        in = !in;
+    return in;
+  };
+  auto nearEdge = [](const std::vector<Vec2>& poly, Vec2 p) {
+    for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
+      if (distanceToSegment({poly[j], poly[i]}, p) < 1e-4) return true;
+    return false;
+  };
+  int checked = 0;
+  auto check = [&](Vec2 p) {
+    const double toHole = std::fabs(dist(p, {58, 55}) - 6);
+    if (nearEdge(star, p) || nearEdge(tri, p) || toHole < 1e-4) return;
+    const bool inside = inPolygon(star, p) && !inPolygon(tri, p) && dist(p, {58, 55}) > 6;
+    const double z = floor->height(p);
+    EXPECT_EQ(inside, !std::isnan(z)) << p.x << "," << p.y;
+    if (inside) {
+      EXPECT_NEAR(z, -10, 1e-9);
+    }
+    ++checked;
+  };
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(5, 95);
+  for (int i = 0; i < 20000; ++i) check({u(rng), u(rng)});
+  for (double y = 8.013; y < 92; y += 0.37)
+    for (double x = 8.007; x < 92; x += 0.05) check({x, y});
+  EXPECT_GT(checked, 100000);
+  // Searches end on the parameter box's sides and on the wires: still classified.
+  const DepthSolver solver(*floor, {8, 8}, {92, 92}, 2.0);
+  EXPECT_NEAR(solver.stopHeight({50, 50}, {CutterShape::Flat, 3, 0}), -10, 1e-9);
 }
 
 TEST(Depth, SeveralFacesMeetingAtARidge) {
