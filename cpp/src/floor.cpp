@@ -153,8 +153,9 @@ class ExpressionFloor : public FloorSurface {
 
 // Whether (u, v) lies outside a face, without running OCCT's classifier per
 // point (it was 97 % of a sculptured plan's time). The face's wires, as closed
-// polylines in (u, v) within 0.5 um of their pcurves (far under any wire's
-// tolerance), decide by the parity of their crossings of a ray from the point.
+// polylines in (u, v) within a thousandth of a cell of their pcurves (about
+// 0.5 um on the face: under the tolerance of any wire), decide by the parity
+// of their crossings of a ray from the point.
 // A raster of the parameter box (cells of about 0.5 mm on the face, 64 to 512
 // a side) keeps, for each cell no polyline comes within a quarter cell of, the
 // state of its centre; each row lists the polyline pieces that cross it.
