@@ -110,8 +110,13 @@ def cancel_a_long_plan(doc, op, plan_before):
     """The user recomputes (Ctrl+R, Std_Refresh) a plan of several seconds,
     presses Esc while it plans and answers Yes to FreeCAD's "abort?" box: the
     plan stops within a second of that Yes, the operation says so in the
-    report view and cuts nothing, and the next recompute plans as before."""
+    report view and cuts nothing, and the next recompute plans as before.
+    The example plans in about a second: a max engagement of 10 % makes it a
+    plan of several (the user's edit, planned once first), set back after."""
     from freecad_plugin import companions
+    op.MaxEngagement = 10.0
+    doc.recompute()
+    long_plan = PlungeRough_plan(op)
     times = {}
 
     def escape():
@@ -155,8 +160,11 @@ def cancel_a_long_plan(doc, op, plan_before):
     }
     step("example: a long plan cancelled")
     doc.recompute()
-    result["cancel"]["planned_again"] = PlungeRough_plan(op) == plan_before
+    result["cancel"]["planned_again"] = PlungeRough_plan(op) == long_plan
     result["cancel"]["companions_active_again"] = [c.Active for c in companions.companions(op)]
+    op.MaxEngagement = 100.0
+    doc.recompute()
+    result["cancel"]["example_again"] = PlungeRough_plan(op) == plan_before
     step("example: planned again after the cancel")
 
 

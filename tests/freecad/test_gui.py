@@ -117,7 +117,7 @@ def test_a_long_plan_cancels_within_a_second(result):
     assert c["yes_to_end"] is not None and c["yes_to_end"] < 1.0, c
     assert c["summary"].startswith("planning cancelled") and c["said"], c
     assert c["cut"] == 0 and not any(c["companions_active"]), c
-    assert c["planned_again"] and all(c["companions_active_again"]), c
+    assert c["planned_again"] and all(c["companions_active_again"]) and c["example_again"], c
 
 
 def test_example_simulates_as_a_cleared_pocket(result):
