@@ -102,7 +102,6 @@ double cornerMaximum(const std::function<double(Vec2)>& lift, Vec2 c, const Cutt
 
 }  // namespace
 
-
 DepthSolver::DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spacing, const Progress& progress)
     : floor_(floor), spacing_(spacing) {
   if (floor.isFlat()) return;

@@ -171,23 +171,19 @@ class Touched {
         const double t = 2 * kPi * k / n;
         const Vec2 q = end + Vec2{std::cos(t), std::sin(t)} * (f * inner);
         if (dist(q, c) < beyond + kWitness) continue;
-        bool free = true;
-        for (const Circle& d : near)
-          if (dist(q, d.c) < d.r + kWitness) {
-            free = false;
-            break;
-          }
-        if (free) return true;
+        if (clearOf(near, q)) return true;
       }
     }
     return false;
   }
+  // q at least kWitness outside every disk.
+  static bool clearOf(const std::vector<Circle>& near, Vec2 q) {
+    for (const Circle& d : near)
+      if (dist(q, d.c) < d.r + kWitness) return false;
+    return true;
+  }
   static bool uncoveredWitness(Vec2 a, Vec2 b, double rs, const std::vector<Circle>& near) {
-    auto uncovered = [&](Vec2 q) {
-      for (const Circle& d : near)
-        if (dist(q, d.c) < d.r + kWitness) return false;
-      return true;
-    };
+    auto uncovered = [&](Vec2 q) { return clearOf(near, q); };
     const double inner = rs - kWitness;
     if (inner <= 0.0) return false;
     const int along = std::min(64, 1 + static_cast<int>(std::ceil(dist(a, b) / (0.5 * inner))));

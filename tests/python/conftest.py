@@ -36,3 +36,12 @@ def load_shape(name):
     import json
     with open(os.path.join(SHAPES, name + ".json")) as f:
         return json.load(f)
+
+
+def limited(data, fraction):
+    """A copy of a planner input with every tool's max_engagement = fraction x its diameter."""
+    import json
+    data = json.loads(json.dumps(data))
+    for t in data["tools"]:
+        t["max_engagement"] = fraction * t["diameter"]
+    return data

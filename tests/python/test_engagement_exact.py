@@ -23,7 +23,7 @@ from shapely.geometry import LineString, Point, Polygon, box
 from shapely.ops import unary_union
 
 import engagement_check as ec
-from conftest import SHAPES, load_shape
+from conftest import SHAPES, limited, load_shape
 from test_stock import random_pocket
 
 SLACK = 0.01        # mm: the tolerance over the limit
@@ -283,13 +283,6 @@ def varied_pocket(seed):
         "max_wall_stock": rng.choice([0.5, 1.0, 2.0]), "seed": seed,
         "growth_pattern": rng.choice(["auto", "rows", "offsets"]),
     }
-
-
-def limited(data, fraction):
-    data = json.loads(json.dumps(data))
-    for t in data["tools"]:
-        t["max_engagement"] = fraction * t["diameter"]
-    return data
 
 
 def checked(plunge, data, name):

@@ -12,7 +12,7 @@ import subprocess
 
 import pytest
 
-from conftest import load_shape
+from conftest import limited, load_shape
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from machine_check import parse
@@ -52,13 +52,6 @@ def deep(data):
     data["top_z"], data["floor"] = 0.0, {"z": -40.0}
     for t in data["tools"]:
         t["flute_length"], t["peck_depth"] = 15.0, 6.0
-    return data
-
-
-def limited(data, fraction):
-    data = json.loads(json.dumps(data))
-    for t in data["tools"]:
-        t["max_engagement"] = fraction * t["diameter"]
     return data
 
 

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from shapely.geometry import Polygon
 
-from conftest import load_shape
+from conftest import limited, load_shape
 from geometry_check import _pieces, accessible_and_disks, wall_stock_left
 from machine_check import floor_function, profile
 
@@ -27,13 +27,6 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 def example(name):
     with open(os.path.join(ROOT, "resources", "examples", name + ".json")) as f:
         return json.load(f)
-
-
-def limited(data, fraction):
-    data = json.loads(json.dumps(data))
-    for t in data["tools"]:
-        t["max_engagement"] = fraction * t["diameter"]
-    return data
 
 
 def shaped(data):

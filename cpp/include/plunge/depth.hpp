@@ -10,8 +10,8 @@
 // the disk, started from the grid and from the floor's peaks.
 #pragma once
 #include <algorithm>
-#include <cmath>
 #include <atomic>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
