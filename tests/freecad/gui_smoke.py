@@ -223,20 +223,23 @@ def click(window, at):
 
 # FreeCAD's own bugs that this test sets aside (each recorded, with the step it
 # came in, in result["report_known_upstream"]); every other traceback fails it.
-# A traceback is one of them if it has all of a bug's parts.
+# A traceback is one of them if it has all the parts of one of a bug's forms.
 UPSTREAM_BUGS = {
     # FreeCAD 0.20's tool bit editor (PathToolBitEdit.ToolBitEditor) now and
     # then finds a widget it has just loaded from its own .ui file already
-    # deleted, in its constructor (FreeCAD's code only).
-    "editor": ("PathToolBitEdit.py", "self.form.bitParams.layout()",
-               "Internal C++ object (PySide2.QtWidgets.QWidget) already deleted."),
+    # deleted, or wrapped as another (a stale PySide wrapper: its toolName a
+    # QDialogButtonBox), while it builds itself (FreeCAD's code only).
+    "editor": [("PathToolBitEdit.py", "self.form.bitParams.layout()",
+                "Internal C++ object (PySide2.QtWidgets.QWidget) already deleted."),
+               ("PathToolBitEdit.py", "in updateUI", "self.form.", "<class 'AttributeError'>: 'PySide2.QtWidgets.",
+                "object has no attribute")],
     # FreeCAD's QuantitySpinBox helper (PathGui.py before 1.0,
     # Path/Base/Gui/Util.py since; the same code in both) is now and then
     # handed a deleted widget's stale wrapper instead of the event its focus
     # filter installed on a spin box gets; seen once on 0.20, in a page of
     # FreeCAD's own (this addon's page guards its filters: PlungeRoughGui.SpinBox).
-    "spin box filter": ("in eventFilter", "if event.type() == QtCore.QEvent.Type.FocusIn",
-                        "QtWidgets.QWidget' object has no attribute 'type'"),
+    "spin box filter": [("in eventFilter", "if event.type() == QtCore.QEvent.Type.FocusIn",
+                         "QtWidgets.QWidget' object has no attribute 'type'")],
 }
 
 
@@ -266,8 +269,8 @@ def upstream_bug(trace, old):
     frames = re.findall(r'File "([^"]+)"', trace)
     if not frames or not all(f.startswith("/usr/") and "/freecad/Mod/" in f for f in frames):
         return None
-    for name, parts in UPSTREAM_BUGS.items():
-        if (old or name != "editor") and all(part in trace for part in parts):
+    for name, forms in UPSTREAM_BUGS.items():
+        if (old or name != "editor") and any(all(part in trace for part in parts) for parts in forms):
             return name
     return None
 
