@@ -175,8 +175,8 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         _add(obj, "App::PropertyFloat", "MinCoverage",
              "With Max Wall Stock 0: percentage of the reachable floor the plunges must clear", 99.6)
         _add(obj, "App::PropertyBool", "AutoSelectTools",
-             "Let the planner choose which of the plungers to use (shortest estimated time); the others stay idle",
-             False)
+             "Let the planner choose which of the plungers to use (shortest estimated time, tool changes "
+             "included); the others stay idle. Off: every plunger cuts", True)
         _add(obj, "App::PropertyFloat", "ToolChangeTime",
              "Seconds one tool change takes on the machine: the automatic tool choice weighs it against the "
              "minutes a plunger saves", 20.0)
@@ -198,8 +198,12 @@ class ObjectPlungeRough(PathOp.ObjectOp):
 
     def opOnDocumentRestored(self, obj):
         # Files from older versions lack newer properties, and their companions
-        # have labels with parentheses (nested comments in G-code).
+        # have labels with parentheses (nested comments in G-code). A file from
+        # before the tool choice existed used every plunger: it still does.
+        chose = hasattr(obj, "AutoSelectTools")
         self._addProperties(obj)
+        if not chose:
+            obj.AutoSelectTools = False
         for comp in companions.companions(obj):
             label = companions.companion_label(obj, comp.ToolController, bool(getattr(comp, "StartHoles", False)))
             if comp.ToolController is not None and comp.Label != label:
@@ -413,11 +417,7 @@ def report_plan(obj, plan, notes=()):
     post_warning = canned_cycle_warning(obj)
     if post_warning:
         warnings.append(post_warning)
-    text = plan["summary"]  # the planner's own words (the CLI's summary)
-    selection = plan.get("tool_selection")
-    if selection:
-        text += "; plungers chosen: %s of %s" % ("/".join("%g" % d for d in selection["chosen"]),
-                                                 "/".join("%g" % d for d in selection["candidates"]))
+    text = plan["summary"]  # the planner's own words (the CLI's summary, with the plungers chosen)
     obj.Summary = "; ".join([text] + warnings + list(notes))
     FreeCAD.Console.PrintMessage("%s: %s\n" % (obj.Label, text))
     for note in notes:

@@ -409,6 +409,9 @@ std::string planToJson(const Plan& plan) {
       if (r.evaluated) {
         o["plunges"] = r.plunges;
         o["coverage"] = r.coverage;
+        o["estimate"] = r.estimate;
+      } else if (r.plunges > 0) {
+        o["plunges"] = r.plunges;
       } else if (!r.refused.empty()) {
         o["refused"] = r.refused;
       } else {

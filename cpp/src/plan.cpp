@@ -6,6 +6,7 @@
 #include <future>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <iomanip>
 #include <cmath>
 #include <set>
@@ -34,6 +35,8 @@
 namespace plunge {
 
 namespace {
+
+Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress& progress);
 
 std::unique_ptr<FloorSurface> makeFloor(const PlanInput& in) {
   if (in.floor.kind == Floor::Kind::Flat) return makeFlatFloor(in.floor.z);
@@ -485,12 +488,15 @@ void wallBandAbove(const PlanInput& in, const DepthSolver& depths, std::vector<C
 // Plunge positions and their stop heights: packing and covering (or the grid),
 // the depth of each (4.4), the rest step in Z, then no plunge below final_depth
 // (held: whether that raised any plunge above the floor).
+// (placed: the positions when the tool choice has placed them already.)
 std::vector<CutDisk> placeAndDepth(const PlanInput& in, const Pocket& pocket, const FloorSurface& floor,
-                                   const DepthSolver& depths, Plan& out, bool& held, const Progress& progress) {
+                                   const DepthSolver& depths, std::optional<CoverResult> placed, Plan& out,
+                                   bool& held, const Progress& progress) {
   std::vector<double> radii;
   for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
   progress.stage(0.05, "packing and covering");
-  const CoverResult cover = placePlunges(in, pocket.region, radii, pocket.core, progress);
+  const CoverResult cover =
+      placed ? std::move(*placed) : placePlunges(in, pocket.region, radii, pocket.core, progress);
   out.stats.regionArea = poly::area(allowedRegion(pocket.region, in.radialAllowance));
   progress.stage(0.75, "plunge depths");
   std::vector<CutDisk> disks = depthsOf(in, cover, depths, progress);
@@ -552,6 +558,29 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// The automatic tool choice (selection.hpp). Each tool set it tries is an
+// input of its own (a subset of the library may lack the start-hole drill a
+// plunger needs), placed (packing and covering) for its estimate, the best
+// planned in full.
+Plan planChoosingTools(const PlanInput& in, const Progress& progress) {
+  const std::unique_ptr<FloorSurface> floor = makeFloor(in);
+  ToolSetStages stages;
+  stages.floor = floor.get();
+  stages.plan = [](PlanInput sub, std::optional<CoverResult> placed, const Progress& p) {
+    validate(sub);
+    return planPlaced(std::move(sub), std::move(placed), p);
+  };
+  stages.place = [](PlanInput sub, const Progress& p) {
+    validate(sub);
+    Plan out;
+    const Pocket pocket = pocketOf(sub, out);  // may drop tools that fit nowhere
+    std::vector<double> radii;
+    for (const Tool& t : sub.tools) radii.push_back(0.5 * t.diameter);
+    return placePlunges(sub, pocket.region, radii, pocket.core, p);
+  };
+  return planWithToolSelection(in, stages, progress);
+}
+
 }  // namespace
 
 Plan plan(PlanInput in, const Progress& progress) {
@@ -559,18 +588,16 @@ Plan plan(PlanInput in, const Progress& progress) {
   progress.stage(0.0, "checking the pocket");
   if (in.autoTools) in.tools = in.library;
   validate(in);
-  // Each tool set the choice tries is an input of its own (a subset of the
-  // library may lack the start-hole drill a plunger needs).
-  auto planToolSet = [](PlanInput sub, const Progress& p) {
-    validate(sub);
-    return planWithTools(std::move(sub), p);
-  };
-  Plan out = in.autoTools ? planWithToolSelection(in, planToolSet, progress) : planWithTools(std::move(in), progress);
+  Plan out = in.autoTools ? planChoosingTools(in, progress) : planWithTools(std::move(in), progress);
   out.stats.planningSeconds = secondsSince(t0);
   return out;
 }
 
-Plan planWithTools(PlanInput in, const Progress& progress) {
+Plan planWithTools(PlanInput in, const Progress& progress) { return planPlaced(std::move(in), std::nullopt, progress); }
+
+namespace {
+
+Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   Plan out;
   const Pocket pocket = pocketOf(in, out);
@@ -581,7 +608,7 @@ Plan planWithTools(PlanInput in, const Progress& progress) {
   const DepthSolver depths(*floor, lo, hi, std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)),
                            progress);
   bool held = false;
-  const std::vector<CutDisk> disks = placeAndDepth(in, pocket, *floor, depths, out, held, progress);
+  const std::vector<CutDisk> disks = placeAndDepth(in, pocket, *floor, depths, std::move(placed), out, held, progress);
 
   progress.stage(0.9, "ordering the plunges");
   sequence(in, disks, out, progress);
@@ -629,5 +656,7 @@ Plan planWithTools(PlanInput in, const Progress& progress) {
   out.stats.planningSeconds = secondsSince(t0);
   return out;
 }
+
+}  // namespace
 
 }  // namespace plunge

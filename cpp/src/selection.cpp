@@ -5,13 +5,16 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <map>
 #include <optional>
 
+#include "detail.hpp"
 #include "plunge/covering.hpp"
 #include "plunge/error.hpp"
 #include "plunge/limits.hpp"
 #include "plunge/types.hpp"
 #include "plunge/polygon.hpp"
+#include "plunge/tools.hpp"
 
 namespace plunge {
 
@@ -40,6 +43,11 @@ std::string setName(const std::vector<double>& ds) {
 // The thesis's rule for the largest tool of a sub-region (5.1): this fraction of
 // its largest inscribed circle's diameter.
 constexpr double kInscribedFraction = 0.7;
+// The estimate's error on the pockets of the tests (flat and sculptured floors,
+// limits): a set must beat the library as given by more to be chosen instead.
+constexpr double kEstimateMargin = 0.015;
+// The hexagon each disk of radius r covers in the thinnest covering: 3 sqrt(3) / 2 r^2.
+constexpr double kHexCellArea = 2.598076211353316;
 
 // The pocket's shape as the choice sees it: inscribed circle, necks, sub-regions
 // and their order (5.5), each said in the reasoning.
@@ -99,13 +107,127 @@ std::vector<double> candidateTools(const PlanInput& in, ToolSelection& sel) {
   return cand;
 }
 
+// A plunge's stop (5.3): the highest floor under its centre and two rings,
+// plus the allowance, held at the final depth (NaN where no floor is under it);
+// and the share of those points where it leaves more than max_floor_stock
+// (what the rest step in Z then plunges again, plan.cpp).
+struct Stop {
+  double z = 0.0;
+  double restShare = 0.0;
+};
+
+Stop stopOf(const PlanInput& in, const FloorSurface& floor, Vec2 c, double r) {
+  Stop s{floor.height(c), 0.0};
+  if (floor.isFlat()) {
+    if (in.finalDepth && !std::isnan(s.z)) s.z = std::max(s.z, *in.finalDepth);
+    s.z += in.floorAllowance;
+    return s;
+  }
+  std::vector<double> h{s.z};
+  for (double ring : {0.5, 0.95})
+    for (int k = 0; k < 8; ++k) {
+      const double a = kPi * (k + 0.5 * (ring < 0.9)) / 4;
+      h.push_back(floor.height({c.x + ring * r * std::cos(a), c.y + ring * r * std::sin(a)}));
+    }
+  s.z = detail::kNaN;
+  for (double v : h)
+    if (!std::isnan(v) && !(v <= s.z)) s.z = v;
+  if (std::isnan(s.z)) return s;
+  if (in.finalDepth) s.z = std::max(s.z, *in.finalDepth);
+  int rest = 0, n = 0;
+  for (double v : h)
+    if (!std::isnan(v)) {
+      ++n;
+      rest += s.z - v > in.maxFloorStock && in.maxFloorStock > 0.0;
+    }
+  s.restShare = static_cast<double>(rest) / n;
+  s.z += in.floorAllowance;
+  return s;
+}
+
+// Which of in.tools plunges a disk of radius r.
+size_t toolOfRadius(const PlanInput& in, double r) {
+  for (size_t k = 0; k < in.tools.size(); ++k)
+    if (std::abs(0.5 * in.tools[k].diameter - r) <= 1e-9 * r) return k;
+  throw InternalError("a placed disk of no tool's radius");
+}
+
+// Sum over each tool's positions of the distance to its nearest other position:
+// the rapids of its tour, near enough for an estimate.
+std::vector<double> nearestNeighbourTravel(const PlanInput& in, const std::vector<CoverDisk>& disks) {
+  std::vector<double> travel(in.tools.size(), 0.0);
+  for (size_t t = 0; t < in.tools.size(); ++t) {
+    std::vector<detail::PointValue> pts;
+    for (size_t i = 0; i < disks.size(); ++i)
+      if (toolOfRadius(in, disks[i].radius) == t) pts.push_back({detail::toBPoint(disks[i].center), static_cast<int>(i)});
+    if (pts.size() < 2) continue;
+    const detail::RStarTree<detail::PointValue> tree(pts.begin(), pts.end());
+    for (const detail::PointValue& p : pts)
+      for (auto it = tree.qbegin(detail::bgi::nearest(p.first, 2)); it != tree.qend(); ++it)
+        if (it->second != p.second) travel[t] += dist(disks[p.second].center, disks[it->second].center);
+  }
+  return travel;
+}
+
+}  // namespace
+
+double estimateMinutes(const PlanInput& in, const std::vector<CoverDisk>& disks, const FloorSurface& floor) {
+  const TimeModel& m = in.timeModel;
+  const double c = in.stockAwareHeights ? std::max(0.0, std::min(in.rapidClearance, in.safeZ - in.topZ))
+                                        : std::max(0.0, in.safeZ - in.topZ);
+  const std::vector<double> travel = nearestNeighbourTravel(in, disks);
+  std::vector<double> perTool(in.tools.size(), 0.0);
+  std::vector<bool> used(in.tools.size(), false);
+  const Tool& smallest = in.tools.back();
+  double restArea = 0.0;
+  for (const CoverDisk& d : disks) {
+    const size_t k = toolOfRadius(in, d.radius);
+    const Tool& t = in.tools[k];
+    used[k] = true;
+    const Stop stop = stopOf(in, floor, d.center, d.radius);
+    const double depth = in.topZ - stop.z;
+    if (!(depth > 0.0)) continue;
+    restArea += stop.restShare * kPi * d.radius * d.radius;
+    // Levels of the flute length, each fed from the clearance over its stock and
+    // retracted as high (motion.hpp): feed depth + c per level, rapid the same.
+    const double levels = t.fluteLength > 0.0 ? std::ceil(depth / t.fluteLength - 1e-9) : 1.0;
+    const double path = depth + levels * c;
+    double minutes = path / t.feed + path / m.retractRate + in.leadOut / t.feed;
+    // Holes into solid deeper than a peck: up out of the hole and back per peck.
+    const double pd = peckDepthOf(t), level = depth / levels;
+    if (in.peck && d.stage == Stage::Packing && level > pd) {
+      const double n = std::ceil(level / pd - 1e-9) - 1.0;
+      minutes += levels * ((pd * n * (n + 1) - n * in.rapidClearance) / m.retractRate + in.peckDwell / 60.0);
+    }
+    perTool[k] += minutes;
+  }
+  // The rest step in Z: the floor stock beyond the limit plunged again by the
+  // smallest tool, in hexagonal cells, each a short plunge through max_floor_stock
+  // plus the clearance, and its rapid to the next.
+  if (restArea > 0.0) {
+    const double r = 0.5 * smallest.diameter, n = restArea / (kHexCellArea * r * r);
+    const double path = 2 * in.maxFloorStock + 2 * c;
+    perTool.back() += n * (path / smallest.feed + path / m.retractRate + 2 * r / m.rapidRate);
+    used.back() = true;
+  }
+  double total = 0.0;
+  for (size_t t = 0; t < in.tools.size(); ++t) {
+    if (!used[t]) continue;
+    total += perTool[t] + travel[t] / m.rapidRate + m.toolChangeSeconds / 60.0;
+  }
+  return total;
+}
+
+namespace {
+
 // 5.4 branch and bound over subsets of the candidates other than the smallest,
-// largest first; each set below the bound is planned with planSet.
+// largest first: each set below the bound is placed and estimated (5.3); then
+// the set with the best estimate is planned in full.
 class ToolSetSearch {
  public:
-  ToolSetSearch(const PlanInput& in, const Region& region, ToolSelection& sel, const ToolSetPlanner& planSet,
+  ToolSetSearch(const PlanInput& in, const Region& region, ToolSelection& sel, const ToolSetStages& stages,
                 const Progress& progress)
-      : in_(in), sel_(sel), planSet_(planSet), progress_(progress), smallest_(sel.candidates.back()),
+      : in_(in), sel_(sel), stages_(stages), progress_(progress), smallest_(sel.candidates.back()),
         others_(sel.candidates.begin(), sel.candidates.end() - 1),
         accArea_(poly::area(accessibleRegion(region, 0.5 * smallest_, in.radialAllowance))) {
     // The highest the floor (plus its allowance) can be, and the fastest feed.
@@ -131,21 +253,21 @@ class ToolSetSearch {
   // The best plan found; throws when none could be planned, with every set's reason.
   Plan run() {
     search(0);
-    if (!bestPlan_) {
-      std::string why;
-      for (const ToolSetResult& r : sel_.sets)
-        if (!r.refused.empty()) why += "; " + setName(r.diameters) + ": " + r.refused;
-      throw Error("tool selection: no tool set could be planned" + why);
-    }
-    return std::move(*bestPlan_);
+    // The library as given is a set too: the choice is never a set the search
+    // did not look at when the user's own tools would do better.
+    for (const Tool& t : in_.tools) library_.push_back(t.diameter);
+    if (std::none_of(sel_.sets.begin(), sel_.sets.end(),
+                     [&](const ToolSetResult& r) { return r.diameters == library_; }))
+      estimate(library_, lowerBound(library_));
+    return planBest();
   }
-  size_t setCount() const { return size_t{1} << others_.size(); }
+  size_t setCount() const { return (size_t{1} << others_.size()) + 1; }
 
  private:
   void search(size_t i) {
     const double lb = lowerBound(i);
     if (lb >= best_) return prune(i, lb);
-    if (i == others_.size()) return evaluate(lb);
+    if (i == others_.size()) return estimate(current(), lb);
     included_.push_back(others_[i]);
     search(i + 1);
     included_.pop_back();
@@ -156,14 +278,19 @@ class ToolSetSearch {
   // the largest still possible: a true lower bound on its time, whatever the
   // engagement limits (they only add plunges) and heights (see the constructor).
   double lowerBound(size_t i) const {
-    const double rBig =
-        0.5 * (!included_.empty() ? included_.front() : (i < others_.size() ? others_[i] : smallest_));
-    const double nTools = included_.size() + 1.0;
+    const double big = !included_.empty() ? included_.front() : (i < others_.size() ? others_[i] : smallest_);
+    return bound(big, included_.size() + 1.0);
+  }
+  double lowerBound(const std::vector<double>& set) const { return bound(set.front(), set.size()); }
+  double bound(double diameter, double nTools) const {
+    const double rBig = 0.5 * diameter;
     const TimeModel& m = in_.timeModel;
     const double disk = kPi * rBig * rBig, plunges = in_.minCoverage * accArea_ / disk;
     const double moves = plunges * perPlunge_ + std::max(plunges * perPlungeFeed_, volume_ / disk);
-    return in_.selection.weightTime * (nTools * m.toolChangeSeconds / 60.0 + moves) +
-           in_.selection.weightTools * nTools;
+    return weighted(nTools * m.toolChangeSeconds / 60.0 + moves, nTools);
+  }
+  double weighted(double minutes, double nTools) const {
+    return in_.selection.weightTime * minutes + in_.selection.weightTools * nTools;
   }
 
   // Pruned: this set, and with every set adding smaller candidates when inside the tree.
@@ -175,41 +302,78 @@ class ToolSetSearch {
     sel_.sets.push_back(r);
   }
 
-  void evaluate(double lb) {
-    ToolSetResult r;
-    r.diameters = current();
-    r.bound = lb;
+  PlanInput inputOf(const std::vector<double>& diameters) const {
     PlanInput sub = in_;
     sub.autoTools = false;
     sub.tools.clear();
-    for (double d : r.diameters) sub.tools.push_back(toolOf(d));
-    // The k-th planned set takes its share of the progress (at most 2^n sets).
-    const double share = 1.0 / static_cast<double>(setCount());
-    std::optional<Plan> planned;
+    for (double d : diameters) sub.tools.push_back(toolOf(d));
+    return sub;
+  }
+
+  // 5.3: the set's positions placed and timed. A set this job cannot plan (say a
+  // plunge mill without a drill as wide as its core) is kept with its reason;
+  // only "no set" is an error.
+  void estimate(const std::vector<double>& diameters, double lb) {
+    ToolSetResult r;
+    r.diameters = diameters;
+    r.bound = lb;
+    r.minutes = r.weighted = lb;
     try {
-      planned = planSet_(sub, progress_.sub(planned_ * share, (planned_ + 1) * share));
+      PlanInput sub = inputOf(diameters);
+      // The placements share the first fifth of the progress, the full plan the rest.
+      const double share = 0.2 / static_cast<double>(setCount());
+      CoverResult cover = stages_.place(sub, progress_.sub(placed_ * share, (placed_ + 1) * share));
+      ++placed_;
+      r.minutes = estimateMinutes(sub, cover.disks, *stages_.floor);
+      r.plunges = static_cast<int>(cover.disks.size());
+      placements_[sel_.sets.size()] = std::move(cover);
+      r.weighted = weighted(r.minutes, diameters.size());
+      best_ = std::min(best_, r.weighted);
+    } catch (const Cancelled&) {
+      throw;
     } catch (const Error& e) {
-      // A set this job cannot plan (say a plunge mill without a drill as wide
-      // as its core) is skipped with its reason; only "no set" is an error.
-      ++planned_;
       r.refused = e.what();
-      r.minutes = r.weighted = lb;
-      sel_.sets.push_back(r);
-      return;
     }
-    Plan& p = *planned;
-    ++planned_;
-    r.evaluated = true;
-    r.plunges = p.stats.plungeCount;
-    r.coverage = p.stats.coverage;
-    r.minutes = p.stats.estimatedMinutes;
-    r.weighted = in_.selection.weightTime * r.minutes + in_.selection.weightTools * r.diameters.size();
     sel_.sets.push_back(r);
-    if (r.weighted < best_) {
-      best_ = r.weighted;
-      sel_.chosen = r.diameters;
-      bestPlan_ = std::move(p);
+  }
+
+  // The sets by estimate, the best planned in full (the next when it cannot be).
+  Plan planBest() {
+    std::vector<size_t> order;
+    for (size_t k = 0; k < sel_.sets.size(); ++k)
+      if (sel_.sets[k].refused.empty() && sel_.sets[k].plunges > 0) order.push_back(k);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return sel_.sets[a].weighted < sel_.sets[b].weighted; });
+    // The library as given stays first unless another set's estimate beats it
+    // by more than the estimate can tell apart.
+    for (size_t k = 0; k < order.size(); ++k)
+      if (sel_.sets[order[k]].diameters == library_ &&
+          sel_.sets[order[k]].weighted <= sel_.sets[order.front()].weighted * (1.0 + kEstimateMargin))
+        std::rotate(order.begin(), order.begin() + k, order.begin() + k + 1);
+    for (size_t k : order) {
+      ToolSetResult& r = sel_.sets[k];
+      try {
+        Plan p = stages_.plan(inputOf(r.diameters), std::move(placements_[k]), progress_.sub(0.2, 1.0));
+        r.evaluated = true;
+        r.estimate = r.minutes;
+        r.plunges = p.stats.plungeCount;
+        r.coverage = p.stats.coverage;
+        r.minutes = p.stats.estimatedMinutes;
+        r.weighted = weighted(r.minutes, r.diameters.size());
+        // The tools the plan uses (a tool may fit nowhere or find nothing to cut).
+        sel_.chosen.clear();
+        for (const ToolCount& c : p.stats.perTool) sel_.chosen.push_back(c.diameter);
+        return p;
+      } catch (const Cancelled&) {
+        throw;
+      } catch (const Error& e) {
+        r.refused = e.what();
+      }
     }
+    std::string why;
+    for (const ToolSetResult& r : sel_.sets)
+      if (!r.refused.empty()) why += "; " + setName(r.diameters) + ": " + r.refused;
+    throw Error("tool selection: no tool set could be planned" + why);
   }
 
   std::vector<double> current() const {
@@ -226,7 +390,7 @@ class ToolSetSearch {
 
   const PlanInput& in_;
   ToolSelection& sel_;
-  const ToolSetPlanner& planSet_;
+  const ToolSetStages& stages_;
   const Progress& progress_;
   const double smallest_;
   const std::vector<double> others_;
@@ -234,41 +398,45 @@ class ToolSetSearch {
   // Minutes: per plunge (retract, or both ways at safe_z), per plunge fed, and
   // the volume to feed through times the largest disk.
   double perPlunge_ = 0.0, perPlungeFeed_ = 0.0, volume_ = 0.0;
-  double best_ = std::numeric_limits<double>::infinity();
-  std::optional<Plan> bestPlan_;
+  double best_ = std::numeric_limits<double>::infinity();  // the best estimate so far
   std::vector<double> included_;
-  int planned_ = 0;  // tool sets planned so far, for the progress
+  std::vector<double> library_;  // the library as given, largest first
+  std::map<size_t, CoverResult> placements_;  // of each estimated set (index into sel_.sets)
+  int placed_ = 0;  // sets placed so far, for the progress
 };
 
-// The search's outcome in the reasoning: every planned set and the choice.
+// The search's outcome in the reasoning: every estimated set and the choice.
 void reportSearch(const PlanInput& in, ToolSelection& sel, size_t setCount) {
-  int evaluated = 0, refused = 0;
+  int estimated = 0, refused = 0;
   for (const ToolSetResult& r : sel.sets) {
-    evaluated += r.evaluated;
+    estimated += r.plunges > 0 || r.evaluated;
     refused += !r.refused.empty();
   }
-  sel.reasoning.push_back(fmt("branch and bound: %g of %g tool sets planned, %g cannot be, the rest pruned by their "
-                              "lower bound",
-                              evaluated, static_cast<double>(setCount), refused));
+  sel.reasoning.push_back(fmt("branch and bound: %g of %g tool sets placed and estimated, %g cannot be, the rest "
+                              "pruned by their lower bound; the best estimate planned in full",
+                              estimated, static_cast<double>(setCount), refused));
   for (const ToolSetResult& r : sel.sets)
     if (r.evaluated)
       sel.reasoning.push_back("  " + setName(r.diameters) +
-                              fmt(": %g plunges, coverage %.2f %%, %.1f min, weighted %.2f", r.plunges,
-                                  100 * r.coverage, r.minutes, r.weighted));
+                              fmt(": estimated %.1f min; planned: %g plunges, coverage %.2f %%, %.1f min, weighted %.2f",
+                                  r.estimate, r.plunges, 100 * r.coverage, r.minutes, r.weighted));
     else if (!r.refused.empty())
       sel.reasoning.push_back("  " + setName(r.diameters) + ": cannot be planned: " + r.refused);
+    else if (r.plunges > 0)
+      sel.reasoning.push_back("  " + setName(r.diameters) +
+                              fmt(": %g positions, estimated %.1f min, weighted %.2f", r.plunges, r.minutes, r.weighted));
   sel.reasoning.push_back("chosen: " + setName(sel.chosen) +
                           fmt(" (weights: time %g, tools %g)", in.selection.weightTime, in.selection.weightTools));
 }
 
 }  // namespace
 
-Plan planWithToolSelection(const PlanInput& in, const ToolSetPlanner& planSet, const Progress& progress) {
+Plan planWithToolSelection(const PlanInput& in, const ToolSetStages& stages, const Progress& progress) {
   double tolerance = 0.0;  // large boundaries: the medial axis of simplified walls (limits.hpp)
   const Region region = planningRegion(in, tolerance);
   ToolSelection sel = describePocket(in, region);
   sel.candidates = candidateTools(in, sel);
-  ToolSetSearch search(in, region, sel, planSet, progress);
+  ToolSetSearch search(in, region, sel, stages, progress);
   Plan out = search.run();
   reportSearch(in, sel, search.setCount());
   out.selection = std::move(sel);

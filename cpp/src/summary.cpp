@@ -1,5 +1,6 @@
 #include "plunge/summary.hpp"
 
+#include <algorithm>
 #include <iomanip>
 #include <sstream>
 
@@ -30,6 +31,36 @@ std::string planSummary(const Plan& plan) {
   s << "; about " << st.estimatedMinutes << " min";
   if (st.minutesAtSafeHeight > st.estimatedMinutes + 0.05)
     s << " (" << st.minutesAtSafeHeight - st.estimatedMinutes << " min saved by stock-aware heights)";
+  if (plan.selection) s << "; " << choiceSummary(*plan.selection);
+  return s.str();
+}
+
+std::string choiceSummary(const ToolSelection& sel) {
+  auto names = [](const std::vector<double>& ds) {
+    std::ostringstream n;
+    for (size_t i = 0; i < ds.size(); ++i) n << (i ? "/" : "") << ds[i];
+    return n.str();
+  };
+  // The largest set considered is the library as given.
+  const ToolSetResult* library = nullptr;
+  const ToolSetResult* chosen = nullptr;
+  for (const ToolSetResult& r : sel.sets) {
+    if (!library || r.diameters.size() > library->diameters.size()) library = &r;
+    if (r.diameters == sel.chosen) chosen = &r;
+  }
+  std::ostringstream s;
+  s << "plungers chosen: " << names(sel.chosen);
+  if (!library || !chosen || library == chosen) return s.str() + " (every plunger of the library)";
+  std::vector<double> left;
+  for (double d : library->diameters)
+    if (std::find(sel.chosen.begin(), sel.chosen.end(), d) == sel.chosen.end()) left.push_back(d);
+  s << " of " << names(library->diameters) << "; left out " << names(left);
+  if (!library->refused.empty()) return s.str() + " (the whole library cannot be planned)";
+  const double chosenEstimate = chosen->evaluated ? chosen->estimate : chosen->minutes;
+  s.str("");
+  s << "plungers chosen: " << names(sel.chosen) << " of " << names(library->diameters) << "; left out " << names(left) << ", which saves about " << std::fixed
+    << std::setprecision(1) << library->minutes - chosenEstimate << " min by the estimate"
+    << (library->plunges > 0 ? "" : " (at least: its lower bound)");
   return s.str();
 }
 

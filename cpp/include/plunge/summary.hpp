@@ -10,6 +10,11 @@ namespace plunge {
 // Plunges per tool, coverage and travel, then the stock left (wall band, floor stock max/mean,
 // volumes removed and left), rest plunges, start holes, levels, lead-outs and
 // the estimated time.
+// With the automatic tool choice, its outcome at the end (choiceSummary).
 std::string planSummary(const Plan& plan);
+
+// The plungers chosen, those of the library left out and the minutes that
+// saves by the choice's estimate (selection.hpp).
+std::string choiceSummary(const ToolSelection& selection);
 
 }  // namespace plunge

@@ -265,11 +265,12 @@ struct SubRegion {
 
 struct ToolSetResult {
   std::vector<double> diameters;
-  bool evaluated = false;  // planned; otherwise pruned by its bound
+  bool evaluated = false;  // planned in full; otherwise estimated (plunges > 0) or pruned by its bound
   bool subtree = false;    // pruned with every set that adds smaller candidates to it
-  int plunges = 0;
+  int plunges = 0;          // of the plan, or the positions placed for the estimate
   double coverage = 0.0;
-  double minutes = 0.0;     // planned time, or the lower bound when pruned
+  double minutes = 0.0;     // planned time, the estimate (5.3) when only placed, the lower bound when pruned
+  double estimate = 0.0;    // the estimate of a set then planned (evaluated)
   double weighted = 0.0;
   double bound = 0.0;       // the branch and bound's lower bound on `weighted`
   std::string refused;      // why this set cannot be planned (not evaluated, not pruned)
