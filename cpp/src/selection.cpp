@@ -68,13 +68,31 @@ ToolSelection describePocket(const PlanInput& in, const Region& region) {
   return sel;
 }
 
-// 5.1 candidates, snapped down to the library (in.tools, largest first), largest first.
-std::vector<double> candidateTools(const PlanInput& in, ToolSelection& sel) {
+// The largest library tool that alone reaches what the library's smallest must
+// cut: the core beyond the wall band (with a band), or all but 1 - min_coverage
+// of the smallest's reach. Below it no tool is needed for reach (a die's
+// corner fillets wider than a plunger's radius let that plunger do it all).
+double reachTool(const PlanInput& in, const Region& region) {
   const std::vector<Tool>& library = in.tools;
-  const double smallest = library.back().diameter;
+  const double rs = 0.5 * library.back().diameter;
+  const Polygons reach = accessibleRegion(region, rs, in.radialAllowance);
+  const Polygons must = in.maxWallStock > 0.0 ? coreRegion(region, reach, in.radialAllowance, in.maxWallStock) : reach;
+  const double slack = in.maxWallStock > 0.0 ? 1e-6 * poly::area(must) : (1.0 - in.minCoverage) * poly::area(reach);
+  for (const Tool& t : library) {
+    if (t.diameter <= library.back().diameter) break;
+    if (poly::area(poly::subtract(must, accessibleRegion(region, 0.5 * t.diameter, in.radialAllowance))) <= slack)
+      return t.diameter;
+  }
+  return library.back().diameter;
+}
+
+// 5.1 candidates, snapped down to the library (in.tools, largest first), largest first.
+std::vector<double> candidateTools(const PlanInput& in, const Region& region, ToolSelection& sel) {
+  const std::vector<Tool>& library = in.tools;
+  const double smallest = reachTool(in, region);
   std::vector<double> cand{smallest};
   auto add = [&](double d) {
-    if (d > 0.0 && std::find(cand.begin(), cand.end(), d) == cand.end()) cand.push_back(d);
+    if (d > smallest && std::find(cand.begin(), cand.end(), d) == cand.end()) cand.push_back(d);
   };
   for (size_t i = 0; i < sel.parts.size(); ++i) {
     const SubRegion& s = sel.parts[i];
@@ -102,8 +120,13 @@ std::vector<double> candidateTools(const PlanInput& in, ToolSelection& sel) {
     sel.reasoning.push_back(line);
   }
   std::sort(cand.begin(), cand.end(), std::greater<double>());
-  sel.reasoning.push_back("candidates: " + setName(cand) +
-                          fmt(" (the smallest, %g, is in every set: it decides what must be reached)", smallest));
+  sel.reasoning.push_back(
+      "candidates: " + setName(cand) +
+      (smallest == library.back().diameter
+           ? fmt(" (the smallest, %g, is in every set: it decides what must be reached)", smallest)
+           : fmt(" (%g reaches all that the library's smallest, %g, must cut: it is in every set, no smaller tool "
+                 "is needed)",
+                 smallest, library.back().diameter)));
   return cand;
 }
 
@@ -188,11 +211,11 @@ double estimateMinutes(const PlanInput& in, const std::vector<CoverDisk>& disks,
     const double depth = in.topZ - stop.z;
     if (!(depth > 0.0)) continue;
     restArea += stop.restShare * kPi * d.radius * d.radius;
-    // Levels of the flute length, each fed from the clearance over its stock and
-    // retracted as high (motion.hpp): feed depth + c per level, rapid the same.
+    // Levels of the flute length (motion.hpp), each fed from the clearance over
+    // its stock: depth + c per level in all. Level k rapids down through the k - 1
+    // cut above it and retracts from its bottom: L (depth + c) at rapid in all.
     const double levels = t.fluteLength > 0.0 ? std::ceil(depth / t.fluteLength - 1e-9) : 1.0;
-    const double path = depth + levels * c;
-    double minutes = path / t.feed + path / m.retractRate + in.leadOut / t.feed;
+    double minutes = (depth + levels * c) / t.feed + levels * (depth + c) / m.retractRate + in.leadOut / t.feed;
     // Holes into solid deeper than a peck: up out of the hole and back per peck.
     const double pd = peckDepthOf(t), level = depth / levels;
     if (in.peck && d.stage == Stage::Packing && level > pd) {
@@ -435,7 +458,7 @@ Plan planWithToolSelection(const PlanInput& in, const ToolSetStages& stages, con
   double tolerance = 0.0;  // large boundaries: the medial axis of simplified walls (limits.hpp)
   const Region region = planningRegion(in, tolerance);
   ToolSelection sel = describePocket(in, region);
-  sel.candidates = candidateTools(in, sel);
+  sel.candidates = candidateTools(in, region, sel);
   ToolSetSearch search(in, region, sel, stages, progress);
   Plan out = search.run();
   reportSearch(in, sel, search.setCount());

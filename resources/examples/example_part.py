@@ -58,6 +58,27 @@ def freeform_part(sculptured=True):
     return block.cut(cavity).removeSplitter()
 
 
+def deep_pocket_part(doc):
+    """The second demo, where plunging pays: a die block 160 x 120 x 90 with a
+    pocket 120 x 80 and 75 mm deep (3.75 x the 20 mm plunger), its vertical
+    corners filleted at 12 mm, modelled as in the Part workbench: two boxes, a
+    fillet on the pocket's vertical edges, a cut. Returns the cut."""
+    block = doc.addObject("Part::Box", "DieBlock")
+    block.Length, block.Width, block.Height = 160, 120, 90
+    pocket = doc.addObject("Part::Box", "PocketVolume")
+    pocket.Length, pocket.Width, pocket.Height = 120, 80, 80
+    pocket.Placement.Base = V(20, 20, 15)
+    doc.recompute()
+    fillet = doc.addObject("Part::Fillet", "PocketCorners")
+    fillet.Base = pocket
+    fillet.Edges = [(i + 1, 12.0, 12.0) for i, e in enumerate(pocket.Shape.Edges)
+                    if abs(e.BoundBox.XLength) < 1e-9 and abs(e.BoundBox.YLength) < 1e-9]
+    cut = doc.addObject("Part::Cut", "DeepPocket")
+    cut.Base, cut.Tool = block, fillet
+    doc.recompute()
+    return cut
+
+
 def floor_face_name(shape, sculptured):
     """The pocket's floor: the B-spline face, or the lowest horizontal face inside the block."""
     best = None

@@ -10,7 +10,9 @@ recompute, post with the linuxcnc post. Writes into $PLUNGE_OUT (default ./out):
   plunge_rough.svg       the plan picture;
   summary.txt            plunges per tool, coverage, travel, estimated time;
   demo_input.json        the planner's input for the operation (demo_floor.brep: its floor);
-  bits/                  the tool bit files.
+  bits/                  the tool bit files;
+  deep_pocket.*          the second demo, where plunging pays: a 75 mm deep
+                         die pocket (deep_pocket_summary.txt, .ngc, .svg, .FCStd).
 A failure is written to demo_error.txt (the GUI has no terminal)."""
 import json
 import os
@@ -86,6 +88,43 @@ def main():
               "planner: " + os.path.normpath(plunge.__file__)]
     with open(os.path.join(OUT, "summary.txt"), "w") as f:
         f.write("\n".join(lines) + "\n")
+    deep_pocket_demo()
+
+
+def deep_pocket_demo():
+    """The second demo, where plunging pays: a 75 mm deep die pocket (Part
+    workbench: boxes, fillet, cut), the same three plungers as plunge mills are
+    fed (1200 mm/min down, as across), 50 mm flutes, the automatic tool choice
+    on as for every new operation. Writes deep_pocket.ngc, .svg, .FCStd and
+    deep_pocket_summary.txt."""
+    import FreeCADGui
+    import example_part
+    from freecad_plugin import PlungeRough, PlungeRoughGui, compat
+
+    doc = FreeCAD.newDocument("PlungeDeepPocket")
+    part = example_part.deep_pocket_part(doc)
+    for obj in doc.Objects:
+        if obj is not part:
+            obj.Visibility = False
+    job = compat.job_gui().Create([part], openTaskPanel=False)
+    doc.recompute()
+    face = example_part.floor_face_name(job.Model.Group[0].Shape, sculptured=False)
+    op, tcs = example_part.add_plunge_rough(job, face, (20, 12, 6), bit_folder=os.path.join(OUT, "bits"),
+                                            RadialAllowance=0.5, FloorAllowance=0.3)
+    for tc in tcs:
+        tc.VertFeed = tc.HorizFeed = "1200 mm/min"
+    doc.recompute()
+    PlungeRoughGui.attach_view_providers(op)
+    plan = PlungeRough.plan_of(op)
+    if plan is None:
+        raise RuntimeError("the deep pocket's operation made no plan: " + op.Summary)
+    with open(os.path.join(OUT, "deep_pocket.ngc"), "w") as f:
+        f.write(compat.post_job(job, "linuxcnc", "--no-show-editor"))
+    shutil.copyfile(PlungeRough.plan_picture(op), os.path.join(OUT, "deep_pocket.svg"))
+    doc.saveAs(os.path.join(OUT, "deep_pocket.FCStd"))
+    with open(os.path.join(OUT, "deep_pocket_summary.txt"), "w") as f:
+        f.write("Plunge Rough on the deep pocket %s.%s, 75 mm deep (FreeCAD %s)\n%s\n" % (
+            job.Model.Group[0].Label, face, ".".join(FreeCAD.Version()[:3]), op.Summary))
 
 
 try:

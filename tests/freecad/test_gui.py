@@ -64,6 +64,15 @@ def result(out):
     total = int(re.match(r"(\d+) plunges \(", lines[1]).group(1))
     per_op = [int(m.group(1)) for m in (re.search(r"(\d+) plunges, plunge feed", l) for l in lines) if m]
     assert per_op and sum(per_op) == total, lines
+    # The second demo, where plunging pays: 75 mm deep with 50 mm flutes, so in
+    # levels; the tool choice (on for new operations) says what it chose, and
+    # the posted program changes tools only to the plungers chosen.
+    deep = open(os.path.join(example, "deep_pocket_summary.txt")).read()
+    assert "2 levels (flute length)" in deep and "plungers chosen: " in deep, deep
+    chosen = re.search(r"plungers chosen: ([\d/.]+)", deep).group(1).split("/")
+    program = open(os.path.join(example, "deep_pocket.ngc")).read()
+    changes = re.findall(r"^\s*(?:N\d+\s+)?M0?6\s+T(\d+)|^\s*(?:N\d+\s+)?T(\d+)\s+M0?6", program, re.M)
+    assert changes and len(changes) == len(chosen), (chosen, changes)
     result_file = os.path.join(out, "gui_result.json")
     if os.path.exists(result_file):
         os.remove(result_file)

@@ -3,9 +3,11 @@
 //
 // 5.1 candidate tools: per sub-region (cut at the necks) the largest tool,
 //     0.7 x its largest inscribed circle, and the neck tools, each snapped down to
-//     a size in the library; the library's smallest tool is in every set, since it
-//     decides how much of the corners the plan must reach. The library as given
-//     (what the operation uses without the choice) is a set too.
+//     a size in the library. The largest tool that alone reaches what the
+//     library's smallest must cut (the core beyond the wall band) is in every
+//     set, and none smaller is a candidate: it decides how much of the corners
+//     the plan reaches. The library as given (what the operation uses without
+//     the choice) is a set too.
 // 5.3 time: the thesis estimates milling time from areas. Here each set's plunge
 //     positions are placed (packing and covering, the cheap part of a plan) and
 //     each position timed on the floor under it: feed through the stock to its
