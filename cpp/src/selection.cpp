@@ -70,10 +70,16 @@ ToolSelection describePocket(const PlanInput& in, const Region& region) {
 
 // The largest library tool that alone reaches what the library's smallest must
 // cut: the core beyond the wall band (with a band), or all but 1 - min_coverage
-// of the smallest's reach. Below it no tool is needed for reach (a die's
-// corner fillets wider than a plunger's radius let that plunger do it all).
+// of the smallest's reach, on a flat floor. Below it no tool is needed for
+// reach (a die's corner fillets wider than a plunger's radius let that plunger
+// do it all).
 double reachTool(const PlanInput& in, const Region& region) {
   const std::vector<Tool>& library = in.tools;
+  // A sculptured floor (or a ball or bull cutter) needs the small tools in Z
+  // too: its hollows keep what a large one leaves above max_floor_stock.
+  const bool flat = in.floor.kind == Floor::Kind::Flat &&
+                    std::all_of(library.begin(), library.end(), [](const Tool& t) { return t.shape == CutterShape::Flat; });
+  if (!flat) return library.back().diameter;
   const double rs = 0.5 * library.back().diameter;
   const Polygons reach = accessibleRegion(region, rs, in.radialAllowance);
   const Polygons must = in.maxWallStock > 0.0 ? coreRegion(region, reach, in.radialAllowance, in.maxWallStock) : reach;

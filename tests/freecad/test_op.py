@@ -124,8 +124,10 @@ def test_build_input_is_the_planner_input_of_the_properties(doc, tmp_path):
     assert data == json.loads(op.PlanData)["input"]  # what the operation planned with
     assert (op.PlanData, op.Summary, [c.Name for c in op.Path.Commands]) == before  # changed nothing
     schema.validate(data)
-    assert [t["diameter"] for t in data["tools"]] == [20, 12, 6]
-    assert [t["id"] for t in data["tools"]] == [int(tc.ToolNumber) for tc in plungers]
+    # New operations choose their plungers (AutoSelectTools): all of them are the library.
+    assert op.AutoSelectTools and data["tools"] == "auto"
+    assert [t["diameter"] for t in data["tool_library"]] == [20, 12, 6]
+    assert [t["id"] for t in data["tool_library"]] == [int(tc.ToolNumber) for tc in plungers]
     assert (data["top_z"], data["safe_z"], data["final_depth"]) == (
         op.StartDepth.Value, op.SafeHeight.Value, op.FinalDepth.Value)
     assert data["floor"] == {"z": 10.0} and data["allowance"]["floor"] == 0.3

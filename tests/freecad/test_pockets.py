@@ -245,4 +245,9 @@ def test_refused_operation_posts_no_tool_change(doc):
     # Selecting the floor again brings them back.
     op.Base = [(job.Model.Group[0], faces_at(obj.Shape, floor_z(obj, 30)))]
     doc.recompute()
-    assert PlungeRough.plan_of(op) is not None and all(c.Active for c in companions.companions(op))
+    plan = PlungeRough.plan_of(op)
+    assert plan is not None
+    # Those of the plungers the plan uses (the tool choice is on for new operations).
+    used = {t["tool_id"] for t in plan["stats"]["per_tool"]}
+    assert [c.Active for c in companions.companions(op)] == [
+        int(c.ToolController.ToolNumber) in used for c in companions.companions(op)]

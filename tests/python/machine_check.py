@@ -295,7 +295,10 @@ class Check:
 
 
 def check_program(data, tools, gcode, spacing=None):
-    """The checker's report of a program for a plan input and its tools."""
+    """The checker's report of a program for a plan input and its tools ("auto":
+    the library the tool choice picked from, every one of which may cut)."""
+    if isinstance(tools, str):
+        tools = data["tool_library"]
     return Check(data, tools, spacing).run(gcode)
 
 

@@ -4,7 +4,8 @@
 // 5.1 candidate tools: per sub-region (cut at the necks) the largest tool,
 //     0.7 x its largest inscribed circle, and the neck tools, each snapped down to
 //     a size in the library. The largest tool that alone reaches what the
-//     library's smallest must cut (the core beyond the wall band) is in every
+//     library's smallest must cut (the core beyond the wall band; on a flat
+//     floor: a sculptured one needs the smallest in its hollows) is in every
 //     set, and none smaller is a candidate: it decides how much of the corners
 //     the plan reaches. The library as given (what the operation uses without
 //     the choice) is a set too.
