@@ -170,7 +170,7 @@ def test_new_operation_from_the_toolbar(result):
     width, needed, scrolls = result["panel_width"]
     assert needed <= width and scrolls is False, result["panel_width"]  # nothing cut off on the right
     assert result["strategies"] == ["Packing", "Grid (honeycomb)", "Grid (square)"]
-    assert result["auto_checkbox"] is False and result["panel_icon"]
+    assert result["auto_checkbox"] is True and result["panel_icon"]  # new operations choose their plungers
     assert "coverage" in result["summary"]
 
 
