@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The automatic tool choice against the plan of the whole library and against
-every tool set planned in full: planning time (min of --runs, with the plans'
+every tool set planned in full that reaches what the library's smallest must
+cut (its smallest at most the choice's smallest candidate): planning time (min of --runs, with the plans'
 own planning_seconds), the set chosen, its minutes, the library's and the best
 set's. Each test shape and the FreeCAD demo (out/demo_input.json, after the
 README's main command), with the shapes' own feeds and with every feed at
@@ -29,14 +30,21 @@ def fastest(plunge, data, runs):
     return best
 
 
-def every_set(plunge, data):
-    """Minutes of every subset of the library holding its smallest tool, planned in full."""
+def every_set(plunge, data, reach):
+    """Minutes of every subset of the library whose smallest tool is at most
+    `reach` (the choice's smallest candidate, which reaches all the library's
+    smallest must cut), planned in full; a set that cannot be planned left out."""
     tools = sorted(data["tools"], key=lambda t: -t["diameter"])
     out = {}
-    for k in range(len(tools)):
-        for others in itertools.combinations(tools[:-1], k):
-            sub = list(others) + [tools[-1]]
-            out[tuple(t["diameter"] for t in sub)] = plunge.plan(dict(data, tools=sub))["stats"]["estimated_minutes"]
+    for k in range(1, len(tools) + 1):
+        for sub in itertools.combinations(tools, k):
+            if sub[-1]["diameter"] > reach:
+                continue
+            try:
+                stats = plunge.plan(dict(data, tools=list(sub)))["stats"]
+            except ValueError:
+                continue
+            out[tuple(t["diameter"] for t in sub)] = stats["estimated_minutes"]
     return out
 
 
@@ -54,6 +62,8 @@ def main():
             print("(%s: %s is missing, skipped)" % (name, os.path.relpath(path, ROOT)))
             continue
         base = json.load(open(path))
+        if base["tools"] == "auto":  # an operation's input: its plungers are the library
+            base["tools"] = base.pop("tool_library")
         if "brep" in base["floor"] and not os.path.isabs(base["floor"]["brep"]):
             base["floor"]["brep"] = os.path.join(os.path.dirname(path), base["floor"]["brep"])
         for feeds in ("own", "1200"):
@@ -63,7 +73,7 @@ def main():
                     t["feed"] = 1200.0
             one = fastest(plunge, data, args.runs)
             auto = fastest(plunge, dict(data, tools="auto", tool_library=data["tools"]), args.runs)
-            sets = every_set(plunge, data)
+            sets = every_set(plunge, data, auto["tool_selection"]["candidates"][-1])
             t1, t2 = one["stats"]["planning_seconds"], auto["stats"]["planning_seconds"]
             print("| %s | %s | %.2f | %.2f | %.2f | %s | %.2f | %.2f | %.2f (%s) |" % (
                 name, feeds, t1, t2, t2 / t1, "/".join("%g" % d for d in auto["tool_selection"]["chosen"]),

@@ -58,7 +58,7 @@ def main():
         print("Automatic choice from the library %s (diameter/feed mm/min):" % ", ".join(
             "%g/%g" % (t["diameter"], t["feed"]) for t in LIBRARY))
         print()
-        print("| shape | necks (width) | candidates | sets planned / pruned | chosen | plunges | est. time | "
+        print("| shape | necks (width) | candidates | sets estimated / pruned | chosen | plunges | est. time | "
               "planning |")
         print("|---|---|---|---|---|---|---|---|")
         for name in args.shapes:
@@ -67,10 +67,12 @@ def main():
             data = dict(base, tools="auto", tool_library=LIBRARY)
             plan = run(data, tmp)
             sel, s = plan["tool_selection"], plan["stats"]
-            planned = sum(1 for x in sel["sets"] if x["evaluated"])
+            # Sets placed and estimated (one of them then planned in full), and pruned by the bound.
+            estimated = sum(1 for x in sel["sets"] if "plunges" in x)
+            pruned = sum(1 for x in sel["sets"] if "pruned" in x)
             necks = ", ".join("%.1f" % n["width"] for n in sel["necks"]) or "none"
             print("| %s | %s | %s | %d / %d | %s | %d | %.1f min | %.2f s |" % (
-                name, necks, "/".join("%g" % d for d in sel["candidates"]), planned, len(sel["sets"]) - planned,
+                name, necks, "/".join("%g" % d for d in sel["candidates"]), estimated, pruned,
                 "/".join("%g" % d for d in sel["chosen"]), s["plunge_count"], s["estimated_minutes"],
                 s["planning_seconds"]))
 

@@ -33,8 +33,10 @@ endmill bit per tool):
                  radial allowance and FinalDepth = the highest point of the
                  floor face + the floor allowance: 0.20's Adaptive cuts flat
                  layers, so a lower final depth would gouge a free-form floor.
-Every tool controller: HorizFeed 1200, VertFeed 300, rapids 5000 mm/min.
-
+Every tool controller: HorizFeed 1200, VertFeed 300, rapids 5000 mm/min;
+Plunge Rough is planned once per model, its plungers' VertFeed at that model's
+plunge feed (A: 1200, B: 300), so that its tool choice (on, as for every new
+operation) weighs tool changes against the plunges at the feed they will run.
 Cycle time, from the posted G-code by this file's own reader (G0/G1/G2/G3,
 G81/G82/G83/G73 with G98/G99 expanded into their moves, G4, M6):
   Model A  every feed move at 1200 mm/min whatever its F; Adaptive StepDown 1 D (20 mm).
@@ -42,7 +44,7 @@ G81/G82/G83/G73 with G98/G99 expanded into their moves, G4, M6):
            Adaptive's helix entries, which FreeCAD feeds at VertFeed);
            Adaptive StepDown 2 D (40 mm).
   Both     rapids at 5000 mm/min along their 3D length, 20 s per M6.
-Beside Model B, not used: the planner's own estimate of Plunge Rough
+Beside them, not used: the planner's own estimate of Plunge Rough
 (stats.estimated_minutes, from the same tool controllers). FreeCAD 0.20's
 CycleTime of an operation is not shown: Path.getCycleTime takes an axis a
 command leaves out as 0, not as where the tool is.
@@ -138,9 +140,9 @@ def adaptive_module():
     raise ImportError("FreeCAD's Adaptive operation")
 
 
-def set_feeds(tc):
+def set_feeds(tc, vertical=PLUNGE_FEED):
     tc.HorizFeed = "%g mm/min" % FEED
-    tc.VertFeed = "%g mm/min" % PLUNGE_FEED
+    tc.VertFeed = "%g mm/min" % vertical
     tc.HorizRapid = tc.VertRapid = "%g mm/min" % RAPID
     return tc
 
@@ -159,11 +161,12 @@ def new_job(pocket, shape, name):
     return job, job.Model.Group[0]
 
 
-def plunge_job(pocket, shape, bits):
-    """A Job with the plungers and a Plunge Rough on the floor; seconds of its creation and plan."""
+def plunge_job(pocket, shape, bits, vertical):
+    """A Job with the plungers (plunging at `vertical` mm/min) and a Plunge Rough
+    on the floor; seconds of its creation and plan."""
     job, model = new_job(pocket, shape, "BenchPlunge")
     for i, d in enumerate(PLUNGERS):
-        set_feeds(example_part.add_tool_controller(job, d, i + 2, bits))
+        set_feeds(example_part.add_tool_controller(job, d, i + 2, bits), vertical)
     face = example_part.floor_face_name(model.Shape, pocket.sculptured)
     start = time.perf_counter()
     op, _ = example_part.add_plunge_rough(job, face, (), bits, RadialAllowance=RADIAL, FloorAllowance=FLOOR)
@@ -509,13 +512,16 @@ def bench_pocket(name, pocket, bits):
     # As FreeCAD's GUI shows the part before a Job is made of it: a curved face's
     # bounding box, from which the Job's default stock is made, is tight only then.
     shape.tessellate(0.1)
-    result = {"name": name}
-    job, op, result["plunge_seconds"] = plunge_job(pocket, shape, bits)
-    result["plan"] = companions.plan_of(op)
-    geometry = result["geometry"] = pocket_geometry(job)
-    program, result["plunge"] = measure(post(job), job, geometry)
-    result["plunge_minutes"] = {m.name: minutes(program, m) for m in MODELS}
-    FreeCAD.closeDocument(job.Document.Name)
+    result = {"name": name, "plan": {}, "plunge": {}, "plunge_minutes": {}, "plunge_seconds": {}}
+    # Planned for each model's plunge feed: the tool choice weighs a tool change
+    # against the plunges it saves at that feed.
+    for m in MODELS:
+        job, op, result["plunge_seconds"][m.name] = plunge_job(pocket, shape, bits, m.plunge_feed)
+        result["plan"][m.name] = companions.plan_of(op)
+        geometry = result["geometry"] = pocket_geometry(job)
+        program, result["plunge"][m.name] = measure(post(job), job, geometry)
+        result["plunge_minutes"][m.name] = minutes(program, m)
+        FreeCAD.closeDocument(job.Document.Name)
 
     job, op, result["adaptive_seconds"] = adaptive_job(pocket, shape, bits)
     result["same_stock"] = job.Stock.Shape.BoundBox.isInside(geometry["box"]) and \
@@ -536,15 +542,19 @@ def checks(r):
     """What does not hold of a pocket's results, one line each."""
     notes = [] if r["same_stock"] else ["the two Jobs' stocks differ (the replay uses the Plunge Job's)"]
     target = r["geometry"]["volume"]
-    planned = {}
-    for p in r["plan"]["plunges"]:
-        planned[p["tool_id"]] = planned.get(p["tool_id"], 0) + 1
-    if planned != r["plunge"]["plunges"]:
-        notes.append("G-code plunges per tool %s, the plan's %s" % (r["plunge"]["plunges"], planned))
-    own = r["plan"]["stats"]["volume_removed"]
-    if abs(own - r["plunge"]["removed"]) > CHECK_TOL * target:
-        notes.append("the planner says %.1f cm3 removed, the replay %.1f" % (own / 1e3, r["plunge"]["removed"] / 1e3))
-    runs = [("Plunge Rough", r["plunge"])] + [("Adaptive " + k, v) for k, v in r["adaptive"].items()]
+    for m in MODELS:
+        plan, cut = r["plan"][m.name], r["plunge"][m.name]
+        planned = {}
+        for p in plan["plunges"]:
+            planned[p["tool_id"]] = planned.get(p["tool_id"], 0) + 1
+        if planned != cut["plunges"]:
+            notes.append("%s: G-code plunges per tool %s, the plan's %s" % (m.name, cut["plunges"], planned))
+        own = plan["stats"]["volume_removed"]
+        if abs(own - cut["removed"]) > CHECK_TOL * target:
+            notes.append("%s: the planner says %.1f cm3 removed, the replay %.1f" % (m.name, own / 1e3,
+                                                                                  cut["removed"] / 1e3))
+    runs = [("Plunge Rough " + k, v) for k, v in r["plunge"].items()] + \
+        [("Adaptive " + k, v) for k, v in r["adaptive"].items()]
     for label, cut in runs:
         if abs(cut["removed"] - target) > CHECK_TOL * target:
             notes.append("%s removed %.1f cm3, %.1f %% of the target %.1f cm3 (leaves %.1f cm3 above it)"
@@ -555,23 +565,25 @@ def checks(r):
         if cut["by_rapids"] > 1e3 * 0.01:
             notes.append("%s: rapids through %.2f cm3 of stock" % (label, cut["by_rapids"] / 1e3))
     a = r["adaptive"][MODELS[0].name]["removed"]
-    if abs(r["plunge"]["removed"] - a) > CHECK_TOL * target:
+    p = r["plunge"][MODELS[0].name]["removed"]
+    if abs(p - a) > CHECK_TOL * target:
         notes.append("Plunge Rough and Adaptive removed %.1f and %.1f cm3: %.1f %% apart"
-                     % (r["plunge"]["removed"] / 1e3, a / 1e3, 100 * abs(r["plunge"]["removed"] - a) / target))
+                     % (p / 1e3, a / 1e3, 100 * abs(p - a) / target))
     return notes
 
 
 def volume_table(results):
     print("| pocket | target cm3 (area cm2) | removed: Plunge / Adaptive cm3 | left above target: Plunge / "
-          "Adaptive cm3 | plunges (T2/T3/T4), levels | Adaptive layers A / B | planning s: Plunge / Adaptive |")
+          "Adaptive cm3 | plunges A; B (T2/T3/T4), levels | Adaptive layers A / B | planning s: Plunge / Adaptive |")
     print("|---|---|---|---|---|---|---|")
     for r in results:
-        g, p, a = r["geometry"], r["plunge"], r["adaptive"]
-        print("| %s | %.1f (%.1f) | %.1f / %.1f | %.1f / %.1f | %d (%s), %d | %s | %.1f / %.1f |" % (
+        g, p, a = r["geometry"], r["plunge"]["A"], r["adaptive"]
+        counts = "; ".join("%d (%s)" % (sum(r["plunge"][m.name]["plunges"].values()), "/".join(
+            str(r["plunge"][m.name]["plunges"].get(t, 0)) for t in (2, 3, 4))) for m in MODELS)
+        print("| %s | %.1f (%.1f) | %.1f / %.1f | %.1f / %.1f | %s, %d | %s | %.1f / %.1f |" % (
             r["name"], g["volume"] / 1e3, g["area"] / 1e2, p["removed"] / 1e3, a["A"]["removed"] / 1e3,
-            p["left"] / 1e3, a["A"]["left"] / 1e3, sum(p["plunges"].values()),
-            "/".join(str(p["plunges"].get(t, 0)) for t in (2, 3, 4)), r["plan"]["stats"]["levels"],
-            " / ".join(str(a[m.name]["layers"]) for m in MODELS), r["plunge_seconds"], r["adaptive_seconds"]))
+            p["left"] / 1e3, a["A"]["left"] / 1e3, counts, r["plan"]["A"]["stats"]["levels"],
+            " / ".join(str(a[m.name]["layers"]) for m in MODELS), r["plunge_seconds"]["A"], r["adaptive_seconds"]))
 
 
 def time_table(results):
@@ -581,8 +593,9 @@ def time_table(results):
     for r in results:
         for m in MODELS:
             p, a, b = r["plunge_minutes"][m.name], r["adaptive_minutes"][m.name], r["bound"][m.name]
-            air = [c["air_length"] / max(c["feed_length"], 1e-9) for c in (r["plunge"], r["adaptive"][m.name])]
-            estimate = "-" if m.feed else "%.1f" % r["plan"]["stats"]["estimated_minutes"]
+            air = [c["air_length"] / max(c["feed_length"], 1e-9) for c in (r["plunge"][m.name],
+                                                                          r["adaptive"][m.name])]
+            estimate = "%.1f" % r["plan"][m.name]["stats"]["estimated_minutes"]
             print("| %s | %s | %.1f (%.1f / %.1f / %.1f) | %.1f (%.1f / %.1f / %.1f) | %.1f | %.2f | %.2f | "
                   "%.0f %% / %.0f %% | %s |" % (
                       r["name"], m.name, p["total"], p["feed"], p["rapid"], p["changes"], a["total"], a["feed"],
