@@ -65,6 +65,9 @@ def _polyline(wire, tolerance):
 V = FreeCAD.Vector
 # Fillets: the floor's and the fillet's normals agree within this along their edge.
 TANGENT_COS = math.cos(math.radians(1.0))
+# A face whose normal's z stays below this everywhere (steeper than 60 degrees)
+# stands as a wall, drafted or not.
+STEEP_Z = 0.5
 
 
 def is_horizontal_plane(face):
@@ -118,7 +121,13 @@ def _rises_from(floor, other, edge, corner=False):
             return False
         mesh = _mesh(other)
         points = mesh[0]
-        if any(_normal(other, p).z < -1e-6 for p in points[::max(1, len(points) // 64)]):
+        normals = [_normal(other, p).z for p in points[::max(1, len(points) // 64)]]
+        if min(normals) < -1e-6:
+            return False
+        # Steep everywhere: a drafted wall, or the round of a drafted corner
+        # rising from a corner blend, not a fillet (which leaves the floor
+        # tangent, facing up): the pocket's walls are no floor to plunge on.
+        if max(normals) < STEEP_Z:
             return False
     except (Part.OCCError, ValueError):
         return False

@@ -63,6 +63,8 @@ constexpr double kDepthCellFraction = 1e-3;
 constexpr double kHexCellArea = 2.598076211353316;
 // Coverage short of min_coverage by less than this is rounding, not worth a warning.
 constexpr double kCoverageSlack = 1e-3;
+// Uncovered pieces smaller than this (mm^2) are the polygons' chords, not stock (stock.hpp wallStockLeft).
+constexpr double kSliverArea = 0.01;
 // Wall stock over max_wall_stock by less than this is the polygons' arcs.
 constexpr double kWallStockSlack = 0.01;
 
@@ -333,6 +335,11 @@ void coverageStats(const PlanInput& in, const Region& region, const CoverResult&
     coreLeft = cover.uncovered;
   }
   out.stats.coreCoverage = out.stats.coreArea > 0 ? 1.0 - poly::area(coreLeft) / out.stats.coreArea : 1.0;
+  // Said only of pieces larger than a sliver: those are the disks' chords
+  // meeting, not stock (wallStockLeft skips them too: they have no place to report).
+  coreLeft.erase(std::remove_if(coreLeft.begin(), coreLeft.end(),
+                                [](const Loop& L) { return std::fabs(signedArea(L)) < kSliverArea; }),
+                 coreLeft.end());
   const WallStock wall = wallStockLeft(region, cover.uncovered, out.accessible, in.radialAllowance);
   out.stats.maxWallStockLeft = wall.thickest;
   // Any strategy short of what was asked for says so: the grid's fixed spacing

@@ -28,6 +28,7 @@ if "_pytest" not in sys.modules:  # run by freecadcmd as a script: pytest on thi
 
 import json
 import math
+import re
 import time
 
 import FreeCAD
@@ -431,6 +432,12 @@ def test_nist_filleted_pocket(doc, tmp_path, kind):
     tools = [(25, 0), (16, 0), (10, 0)]
     job, op, tcs = plan(doc, shape, lambda s: [name], kind, tmp_path, tools=tools,
                         flute=math.ceil(depth + 20), length=math.ceil(depth + 60))
+    # The fillets and corner blends added to the floor, not the rounds of the
+    # drafted walls' corners above them (they rise the pocket's whole depth).
+    added = re.search(r"fillets added to the floor: ([^;]+)", op.Summary).group(1).split(", ")
+    model = job.Model.Group[0].Shape
+    assert added and all(model.getElement(a.split(".")[-1]).BoundBox.ZMax < face.BoundBox.ZMin + 0.5 * depth
+                         for a in added), added
     measured(job, op, "nist_%s_%s" % (name, kind))
 
 
