@@ -53,9 +53,12 @@ def cases(names, each_tool):
             continue
         data = json.load(open(path))
         yield name, data, os.path.dirname(path)
-        if each_tool and isinstance(data.get("tools"), list) and len(data["tools"]) > 1:
-            for tool in data["tools"]:
-                alone = dict(data, tools=[tool])
+        # An operation's input chooses from its plungers ("auto"): each alone too.
+        tools = data["tool_library"] if data.get("tools") == "auto" else data.get("tools")
+        if each_tool and isinstance(tools, list) and len(tools) > 1:
+            alone_base = {k: v for k, v in data.items() if k != "tool_library"}
+            for tool in tools:
+                alone = dict(alone_base, tools=[tool])
                 yield "%s, %g mm alone" % (name, tool["diameter"]), alone, os.path.dirname(path)
 
 
