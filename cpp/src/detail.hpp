@@ -21,6 +21,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Feasibility slack, mm: a disk may come this much nearer a wall or another disk
 // than it should (rounding of tangent constructions).
 constexpr double kTol = 1e-9;
+// The hexagon each disk of radius r covers in the thinnest covering: 3 sqrt(3) / 2 r^2.
+constexpr double kHexCellArea = 2.598076211353316;
 
 // "(x, y)" for messages.
 inline std::string formatPoint(const double* x, int dimensions, int digits = 6) {

@@ -59,8 +59,6 @@ constexpr double kGreedyDisks = 200.0;
 // The depth solver's cells (depth.hpp): a quarter of the smallest tool's
 // diameter, but no finer than this fraction of the pocket's diagonal.
 constexpr double kDepthCellFraction = 1e-3;
-// The hexagon each disk of radius r covers in the thinnest covering: 3 sqrt(3) / 2 r^2.
-constexpr double kHexCellArea = 2.598076211353316;
 // Coverage short of min_coverage by less than this is rounding, not worth a warning.
 constexpr double kCoverageSlack = 1e-3;
 // Uncovered pieces smaller than this (mm^2) are the polygons' chords, not stock (stock.hpp wallStockLeft).
@@ -326,7 +324,7 @@ void coverageStats(const PlanInput& in, const Region& region, const CoverResult&
   out.stats.accessibleArea = cover.accessibleArea;
   out.stats.coveredArea = cover.coveredArea;
   out.stats.coverage = cover.accessibleArea > 0 ? cover.coveredArea / cover.accessibleArea : 0.0;
-  out.stats.hexReferenceCount = cover.accessibleArea / (kHexCellArea * rMax * rMax);
+  out.stats.hexReferenceCount = cover.accessibleArea / (detail::kHexCellArea * rMax * rMax);
   // The core beyond the wall band; without a band, the whole accessible region.
   Polygons coreLeft = cover.coreUncovered;
   out.stats.coreArea = cover.coreArea;

@@ -46,8 +46,6 @@ constexpr double kInscribedFraction = 0.7;
 // The estimate's error on the pockets of the tests (flat and sculptured floors,
 // limits): a set must beat the library as given by more to be chosen instead.
 constexpr double kEstimateMargin = 0.015;
-// The hexagon each disk of radius r covers in the thinnest covering: 3 sqrt(3) / 2 r^2.
-constexpr double kHexCellArea = 2.598076211353316;
 
 // The pocket's shape as the choice sees it: inscribed circle, necks, sub-regions
 // and their order (5.5), each said in the reasoning.
@@ -183,12 +181,14 @@ size_t toolOfRadius(const PlanInput& in, double r) {
 
 // Sum over each tool's positions of the distance to its nearest other position:
 // the rapids of its tour, near enough for an estimate.
-std::vector<double> nearestNeighbourTravel(const PlanInput& in, const std::vector<CoverDisk>& disks) {
+// (tool: each disk's index into in.tools)
+std::vector<double> nearestNeighbourTravel(const PlanInput& in, const std::vector<CoverDisk>& disks,
+                                           const std::vector<size_t>& tool) {
   std::vector<double> travel(in.tools.size(), 0.0);
   for (size_t t = 0; t < in.tools.size(); ++t) {
     std::vector<detail::PointValue> pts;
     for (size_t i = 0; i < disks.size(); ++i)
-      if (toolOfRadius(in, disks[i].radius) == t) pts.push_back({detail::toBPoint(disks[i].center), static_cast<int>(i)});
+      if (tool[i] == t) pts.push_back({detail::toBPoint(disks[i].center), static_cast<int>(i)});
     if (pts.size() < 2) continue;
     const detail::RStarTree<detail::PointValue> tree(pts.begin(), pts.end());
     for (const detail::PointValue& p : pts)
@@ -204,13 +204,16 @@ double estimateMinutes(const PlanInput& in, const std::vector<CoverDisk>& disks,
   const TimeModel& m = in.timeModel;
   const double c = in.stockAwareHeights ? std::max(0.0, std::min(in.rapidClearance, in.safeZ - in.topZ))
                                         : std::max(0.0, in.safeZ - in.topZ);
-  const std::vector<double> travel = nearestNeighbourTravel(in, disks);
+  std::vector<size_t> tool;
+  for (const CoverDisk& d : disks) tool.push_back(toolOfRadius(in, d.radius));
+  const std::vector<double> travel = nearestNeighbourTravel(in, disks, tool);
   std::vector<double> perTool(in.tools.size(), 0.0);
   std::vector<bool> used(in.tools.size(), false);
   const Tool& smallest = in.tools.back();
   double restArea = 0.0;
-  for (const CoverDisk& d : disks) {
-    const size_t k = toolOfRadius(in, d.radius);
+  for (size_t i = 0; i < disks.size(); ++i) {
+    const CoverDisk& d = disks[i];
+    const size_t k = tool[i];
     const Tool& t = in.tools[k];
     used[k] = true;
     const Stop stop = stopOf(in, floor, d.center, d.radius);
@@ -234,7 +237,7 @@ double estimateMinutes(const PlanInput& in, const std::vector<CoverDisk>& disks,
   // smallest tool, in hexagonal cells, each a short plunge through max_floor_stock
   // plus the clearance, and its rapid to the next.
   if (restArea > 0.0) {
-    const double r = 0.5 * smallest.diameter, n = restArea / (kHexCellArea * r * r);
+    const double r = 0.5 * smallest.diameter, n = restArea / (detail::kHexCellArea * r * r);
     const double path = 2 * in.maxFloorStock + 2 * c;
     perTool.back() += n * (path / smallest.feed + path / m.retractRate + 2 * r / m.rapidRate);
     used.back() = true;
