@@ -9,6 +9,7 @@ planner module comes from build/cpp, the addon from the source tree):
 
 PLUNGE_BENCH_POCKETS="2,3" runs only those pockets (numbers below),
 PLUNGE_BENCH_CELL the height field's cell (mm, default 0.25),
+PLUNGE_BENCH_GCODE a folder to keep the posted programs in,
 PLUNGE_BUILD_DIR another build tree.
 
 Pockets (Part booleans; the floor face is the operations' base, as the tests
@@ -204,8 +205,14 @@ def adaptive_job(pocket, shape, bits):
     return job, op, seconds
 
 
-def post(job):
-    return compat.post_job(job, "linuxcnc", "--no-show-editor")
+def post(job, name):
+    text = compat.post_job(job, "linuxcnc", "--no-show-editor")
+    keep = os.environ.get("PLUNGE_BENCH_GCODE")
+    if keep:
+        os.makedirs(keep, exist_ok=True)
+        with open(os.path.join(keep, name + ".ngc"), "w") as f:
+            f.write(text)
+    return text
 
 
 def tools_of(job):
@@ -519,7 +526,7 @@ def bench_pocket(name, pocket, bits):
         job, op, result["plunge_seconds"][m.name] = plunge_job(pocket, shape, bits, m.plunge_feed)
         result["plan"][m.name] = companions.plan_of(op)
         geometry = result["geometry"] = pocket_geometry(job)
-        program, result["plunge"][m.name] = measure(post(job), job, geometry)
+        program, result["plunge"][m.name] = measure(post(job, "%s plunge %s" % (name, m.name)), job, geometry)
         result["plunge_minutes"][m.name] = minutes(program, m)
         FreeCAD.closeDocument(job.Document.Name)
 
@@ -530,7 +537,7 @@ def bench_pocket(name, pocket, bits):
     for model in MODELS:
         set_value(op, "StepDown", model.step_down * PLUNGERS[0])
         job.Document.recompute()
-        program, result["adaptive"][model.name] = measure(post(job), job, geometry)
+        program, result["adaptive"][model.name] = measure(post(job, "%s adaptive %s" % (name, model.name)), job, geometry)
         result["adaptive_minutes"][model.name] = minutes(program, model)
     FreeCAD.closeDocument(job.Document.Name)
     result["bound"] = {m.name: lower_bound(geometry["area"], geometry["volume"], m) for m in MODELS}
