@@ -16,3 +16,26 @@ def _plungeRoughInstall():
 
 
 _plungeRoughInstall()
+
+
+def _plungeRoughAfterStart():
+    """Once FreeCAD has started (its CAM modules can then be imported): the
+    plunge-mill tool bits made and registered with the tool library when the
+    addon has none yet (a clone by the Addon Manager). One function: FreeCAD
+    runs this file with names that later functions cannot see."""
+    from PySide import QtCore
+
+    def first_start():
+        try:
+            from freecad_plugin import plunge_mill
+
+            plunge_mill.ensure_installed()
+        except Exception as e:  # never break FreeCAD's start
+            import FreeCAD
+
+            FreeCAD.Console.PrintWarning("PlungeRough: the plunge-mill tool bits could not be made (%s)\n" % e)
+
+    QtCore.QTimer.singleShot(0, first_start)
+
+
+_plungeRoughAfterStart()

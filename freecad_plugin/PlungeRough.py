@@ -280,8 +280,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
                                    "(the next recompute)"), error=False)
             FreeCAD.addDocumentObserver(_PlanAgain(obj))
             return
-        with open(os.path.join(workdir, "plan.svg"), "w") as f:
-            f.write(plan.pop("svg"))
+        write_pictures(workdir, plan)
         obj.PlanData = json.dumps({"input": data, "plan": plan})
         report_plan(obj, plan, notes)
         own_tc, problem = companions.activate_companions(obj, plan, tcs)
@@ -451,9 +450,36 @@ def time_model(tc, tool_change_seconds=20.0):
     return model
 
 
-def plan_picture(obj):
-    """Path of the SVG picture of the operation's last plan."""
-    return os.path.join(plan_folder(obj, create=False), "plan.svg")
+# The plan's pictures, one per question: (key in the planner's result, file, title).
+PICTURES = (("svg", "plan.svg", "The plan"),
+            ("svg_stock", "plan-stock.svg", "Stock left"),
+            ("svg_heights", "plan-heights.svg", "Stop heights"))
+
+
+def write_pictures(workdir, plan):
+    """The planner's pictures into the operation's folder (taken out of the plan);
+    a view the plan has not (stop heights over a flat floor) is removed."""
+    for key, name, _ in PICTURES:
+        path = os.path.join(workdir, name)
+        picture = plan.pop(key, None)
+        if picture is None:
+            if os.path.exists(path):
+                os.remove(path)
+            continue
+        with open(path, "w") as f:
+            f.write(picture)
+
+
+def plan_pictures(obj):
+    """[(title, path)] of the pictures of the operation's last plan that exist."""
+    folder = plan_folder(obj, create=False)
+    return [(title, os.path.join(folder, name)) for _, name, title in PICTURES
+            if os.path.exists(os.path.join(folder, name))]
+
+
+def plan_picture(obj, name="plan.svg"):
+    """Path of one picture of the operation's last plan (plan.svg: the plan)."""
+    return os.path.join(plan_folder(obj, create=False), name)
 
 
 # Files saved before the companions had their own module name this class as

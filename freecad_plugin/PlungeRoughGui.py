@@ -37,6 +37,31 @@ class SpinBox(PathGui.QuantitySpinBox):
         return False
 
 
+class PictureDialog(QtGui.QDialog):
+    """A plan's picture (SVG, drawn by Qt's SVG image plugin), scaled to fit
+    the screen, with its file's path to open it elsewhere."""
+
+    def __init__(self, path, title, parent=None):
+        super().__init__(parent)
+        self.setWindowTitle(translate("PlungeRough", "Plunge Rough: %s") % title)
+        self.setAttribute(QtCore.Qt.WA_DeleteOnClose)
+        layout = QtGui.QVBoxLayout(self)
+        self.image = QtGui.QLabel()
+        pixmap = QtGui.QPixmap(path)
+        screen = QtGui.QGuiApplication.primaryScreen().availableGeometry()
+        if not pixmap.isNull():
+            pixmap = pixmap.scaled(int(0.6 * screen.width()), int(0.75 * screen.height()),
+                                   QtCore.Qt.KeepAspectRatio, QtCore.Qt.SmoothTransformation)
+        self.image.setPixmap(pixmap)
+        layout.addWidget(self.image)
+        where = QtGui.QLabel(path)
+        where.setTextInteractionFlags(QtCore.Qt.TextSelectableByMouse)
+        layout.addWidget(where)
+        close = QtGui.QDialogButtonBox(QtGui.QDialogButtonBox.Close)
+        close.rejected.connect(self.close)
+        layout.addWidget(close)
+
+
 class TaskPanelOpPage(PathOpGui.TaskPanelPage):
     """The operation's own page: plungers, allowances, cycle, the plan's summary."""
 
@@ -53,8 +78,37 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             "MaxFloorStock": SpinBox(self.form.maxFloorStock, obj, "MaxFloorStock"),
             "LeadOut": SpinBox(self.form.leadOut, obj, "LeadOut"),
         }
+        self.obj = obj
+        self.picture = None
+        for button, name in self._pictureButtons():
+            button.clicked.connect(lambda checked=False, name=name: self.showPicture(name))
+        self._enablePictures()
+
+    def _pictureButtons(self):
+        return [(self.form.showPlan, "plan.svg"), (self.form.showStock, "plan-stock.svg"),
+                (self.form.showHeights, "plan-heights.svg")]
+
+    def _enablePictures(self):
+        """A picture's button is live when the last plan drew it."""
+        if getattr(self, "obj", None) is None:  # before initPage
+            return
+        for button, name in self._pictureButtons():
+            button.setEnabled(os.path.exists(PlungeRough.plan_picture(self.obj, name)))
+
+    def showPicture(self, name):
+        """One of the last plan's pictures in a window of its own beside the panel."""
+        if self.picture is not None:
+            self.picture.close()
+        self.picture = PictureDialog(PlungeRough.plan_picture(self.obj, name),
+                                     dict((n, t) for _, n, t in PlungeRough.PICTURES)[name],
+                                     FreeCADGui.getMainWindow())
+        self.picture.show()
+        return self.picture
 
     def cleanupPage(self, obj):
+        if self.picture is not None:
+            self.picture.close()
+            self.picture = None
         # The panel's widgets are deleted with it: no filter left on them and
         # no wrapper of them kept alive by this page (a stale wrapper is what
         # SpinBox guards against).
@@ -129,6 +183,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             self.form.toolControllers.addItem(item)
         self.form.toolControllers.blockSignals(False)
         self.form.summary.setText(obj.Summary)
+        self._enablePictures()
 
     def getSignalsForUpdate(self, obj):
         return [
@@ -155,6 +210,9 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
     def updateData(self, obj, prop):
         if prop == "Summary":
             self.form.summary.setText(obj.Summary)
+        # A recompute that plans the same again changes no Summary: the pictures
+        # are looked for whatever changed.
+        self._enablePictures()
         if prop == "UseCannedCycle":
             self.form.cannedCycleNote.setVisible(obj.UseCannedCycle)
 

@@ -3,7 +3,32 @@ addon, and FreeCAD's progress indicator reporting (and cancelling) a plan.
 
 App side: never imports GUI code.
 """
+import os
+
 import FreeCAD
+
+ADDON = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def install_command(addon=ADDON):
+    """The one command that builds the planner and installs it (and the
+    plunge-mill bits) for this FreeCAD, from a clone of the repository (an
+    Addon Manager install is one); None for an installed copy, which has no
+    sources to build from."""
+    if not os.path.exists(os.path.join(addon, "resources", "setup.sh")):
+        return None
+    return "sh '%s/resources/install_addon.sh' --build" % addon
+
+
+def missing_planner_message(error=None, addon=ADDON):
+    """What the user reads when the compiled planner is not beside the addon."""
+    why = " (%s)" % error if error else ""
+    command = install_command(addon)
+    if command:
+        return ("the compiled planner (the plunge module) is not installed beside the addon in %s%s: build and "
+                "install it for this FreeCAD, as root on Debian: %s" % (addon, why, command))
+    return ("the compiled planner (the plunge module) is not installed beside the addon in %s%s: install the addon "
+            "again from a clone of PlungeRough (its README's main command)" % (addon, why))
 
 
 def planner():
@@ -11,7 +36,7 @@ def planner():
     try:
         import plunge
     except ImportError as e:
-        raise ValueError("the planner module is not installed (%s); run the README's main command" % e)
+        raise ValueError(missing_planner_message(e))
     return plunge
 
 

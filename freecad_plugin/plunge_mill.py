@@ -153,6 +153,20 @@ def bit_dict(p):
     return {"version": 2, "name": bit_name(p), "shape": SHAPE + ".fcstd", "parameter": parameter, "attribute": {}}
 
 
+def ensure_installed(root=None):
+    """The bits under the addon's Tools folder, made (and in 1.1 registered with
+    the CAM asset library) the first time FreeCAD starts with an addon that has
+    none: a git clone into Mod by the Addon Manager. Returns the bits made, or
+    [] when they were there already."""
+    root = root or os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    if os.path.isdir(os.path.join(root, "Tools", "Bit")):
+        return []
+    bits = install(root)
+    FreeCAD.Console.PrintMessage("PlungeRough: the plunge-mill tool bits are in %s%s\n" % (
+        os.path.join(root, "Tools"), " and the CAM asset library" if compat.tool_library() else ""))
+    return bits
+
+
 def install(root):
     """Shape, bits and library under root/Tools (Shape, Bit, Library); in 1.1
     also in the user's CAM asset library. Returns the bits' file paths."""

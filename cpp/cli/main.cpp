@@ -22,6 +22,15 @@ void writeFile(const std::string& path, const std::string& text) {
   if (!f || !(f << text)) throw plunge::Error("cannot write " + path);
 }
 
+// The plan view in `path`, each other view beside it: plan.svg, plan-stock.svg.
+std::string svgPath(const std::string& path, plunge::SvgView view) {
+  if (view == plunge::SvgView::Plan) return path;
+  const size_t dot = path.rfind('.'), slash = path.find_last_of("/\\");
+  const bool ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  const std::string stem = ext ? path.substr(0, dot) : path, suffix = ext ? path.substr(dot) : ".svg";
+  return stem + "-" + plunge::svgViewName(view) + suffix;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -31,7 +40,9 @@ int main(int argc, char** argv) {
   CLI::App* planCmd = app.add_subcommand("plan", "Plan the plunges of a pocket described in a JSON file");
   planCmd->add_option("INPUT", input, "plan input (JSON, see docs/plan-format.md)")->required();
   planCmd->add_option("-o,--output", output, "plan output JSON (default: standard output)");
-  planCmd->add_option("--svg", svg, "write a picture of the plan");
+  planCmd->add_option("--svg", svg,
+                      "write the plan's pictures: the plan to this file, the stock left beside it (NAME-stock.svg) "
+                      "and, over a sculptured floor, the stop heights (NAME-heights.svg)");
   planCmd->add_option("--gcode", gcode, "write RS-274 G-code (explicit moves)");
   try {
     app.parse(argc, argv);
@@ -52,7 +63,9 @@ int main(int argc, char** argv) {
     // too); on stderr, so that the plan on stdout stays valid JSON.
     if (plan.selection)
       for (const std::string& line : plan.selection->reasoning) std::cerr << line << "\n";
-    if (!svg.empty()) writeFile(svg, plunge::planToSvg(in, plan));
+    if (!svg.empty())
+      for (plunge::SvgView view : plunge::svgViews(in))
+        writeFile(svgPath(svg, view), plunge::planToSvg(in, plan, view));
     if (!gcode.empty()) writeFile(gcode, plunge::planToGcode(in, plan));
   } catch (const plunge::Error& e) {
     std::cerr << "plunge-rough: error: " << input << ": " << e.what() << "\n";

@@ -1,4 +1,4 @@
-// The Python module `plunge` (README "Using it", docs/plan-format.md): conversions and
+// The Python module `plunge` (docs/cli.md, docs/plan-format.md): conversions and
 // bindings only. plunge::Error becomes ValueError, plunge::InternalError
 // RuntimeError; long calls release the GIL.
 #include <pybind11/functional.h>
@@ -92,18 +92,23 @@ py::object planDict(const py::dict& input, bool svg, const py::object& progress)
   if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
     throw plunge::Error("progress: expected a callable (fraction, stage) or None");
   const plunge::Progress reporter = progressOf(progress);
-  std::string out, picture, summary;
+  std::string out, summary;
+  std::vector<std::pair<std::string, std::string>> pictures;  // (key, SVG)
   {
     py::gil_scoped_release release;
     const plunge::PlanInput in = plunge::planInputFromJson(text);
     const plunge::Plan plan = plunge::plan(in, reporter);
     out = plunge::planToJson(plan);
     summary = plunge::planSummary(plan);
-    if (svg) picture = plunge::planToSvg(in, plan);
+    if (svg)
+      for (plunge::SvgView view : plunge::svgViews(in))
+        pictures.emplace_back(view == plunge::SvgView::Plan ? std::string("svg")
+                                                            : std::string("svg_") + plunge::svgViewName(view),
+                              plunge::planToSvg(in, plan, view));
   }
   py::object result = fromJson(json::parse(out));
   result["summary"] = py::str(summary);
-  if (svg) result["svg"] = py::str(picture);
+  for (const auto& [key, picture] : pictures) result[py::str(key)] = py::str(picture);
   return result;
 }
 
@@ -161,8 +166,8 @@ PYBIND11_MODULE(plunge, m) {
   py::register_exception<plunge::InternalError>(m, "InternalError", PyExc_RuntimeError);
   m.def("plan", &planDict, py::arg("input"), py::arg("svg") = false, py::arg("progress") = py::none(),
         "Plan a pocket: input and output dicts as in docs/plan-format.md; the result also "
-        "holds \"summary\", the plan in one line for people (the CLI's), and with svg=True \"svg\", "
-        "the plan's picture. progress(fraction, stage) is called "
+        "holds \"summary\", the plan in one line for people (the CLI's), and with svg=True its pictures: \"svg\" the plan, "
+        "\"svg_stock\" the stock left, \"svg_heights\" the stop heights (sculptured floors). progress(fraction, stage) is called "
         "about every 0.1 s while planning; returning False cancels (ValueError \"planning cancelled\"). "
         "Ctrl+C interrupts planning (KeyboardInterrupt).");
   m.def("start_hole_tools", &startHoleTools, py::arg("tools"),

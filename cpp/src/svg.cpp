@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <map>
 #include <sstream>
+#include <vector>
 
 #include "detail.hpp"
 
@@ -71,10 +72,11 @@ std::string stockMapSvg(const StockMap& m, double limit) {
   return s.str();
 }
 
-// The plan's picture, layer by layer (planToSvg); y is drawn downwards.
+// One of the plan's pictures (planToSvg), layer by layer; y is drawn downwards.
+// Each view answers one question, so nothing drawn for one hides another.
 class SvgPicture {
  public:
-  SvgPicture(const PlanInput& input, const Plan& plan) : in_(input), plan_(plan) {
+  SvgPicture(const PlanInput& input, const Plan& plan, SvgView view) : in_(input), plan_(plan), view_(view) {
     detail::Bounds box;
     box.add(input.boundary);
     lo_ = box.lo;
@@ -89,24 +91,33 @@ class SvgPicture {
       zLo_ = std::min(zLo_, p.z);
       zHi_ = std::max(zHi_, p.z);
     }
-    depthDots_ = !plan.plunges.empty() && zHi_ - zLo_ > 1e-9;
     s_ << std::fixed << std::setprecision(3);
   }
 
   std::string draw() {
     frame();
     pocket();
-    plunges();
-    marks();
+    if (view_ == SvgView::Plan) tours();
+    if (view_ == SvgView::Stock) stockLeft();
+    if (view_ == SvgView::Heights) heights();
     legend();
     s_ << "</svg>\n";
     return s_.str();
   }
 
  private:
+  size_t legendLines() const {
+    switch (view_) {
+      case SvgView::Plan: return 3 + plan_.stats.perTool.size();
+      case SvgView::Stock: return 3 + std::min<size_t>(plan_.broken.size(), kMaxBrokenLines);
+      case SvgView::Heights: return 3;
+    }
+    return 3;
+  }
+
   void frame() {
     const double w = hi_.x - lo_.x, h = hi_.y - lo_.y, margin = 0.04 * size_;
-    legendH_ = 0.05 * size_ * (5 + plan_.stats.perTool.size() + (plan_.stockMap ? 1 : 0));
+    legendH_ = 1.4 * fs_ * (legendLines() + 0.8);
     const double vx = lo_.x - margin, vy = -hi_.y - margin - legendH_, vw = w + 2 * margin,
                  vh = h + 2 * margin + legendH_;
     const double pxW = 1200.0, pxH = pxW * vh / vw;
@@ -129,15 +140,15 @@ class SvgPicture {
        << 4 * sw_ << "\" stroke-width=\"" << sw_ << "\"/>\n";
   }
 
-  // The stock map under the disks, each disk, then each tool's path in execution order.
-  void plunges() {
-    if (plan_.stockMap) s_ << stockMapSvg(*plan_.stockMap, stockScale_);
-    const char* fillOpacity = plan_.stockMap ? "0.06" : "0.22";  // the stock map shows through
-    for (const Plunge& p : plan_.plunges) {
-      const char* c = kPalette[colour_[p.toolId] % 8];
-      s_ << "<circle cx=\"" << p.x << "\" cy=\"" << -p.y << "\" r=\"" << p.diameter / 2 << "\" fill=\"" << c
-         << "\" fill-opacity=\"" << fillOpacity << "\" stroke=\"" << c << "\" stroke-width=\"" << sw_ << "\"/>\n";
-    }
+  void disk(const Plunge& p, const std::string& fill, double opacity, const std::string& stroke) {
+    s_ << "<circle cx=\"" << p.x << "\" cy=\"" << -p.y << "\" r=\"" << p.diameter / 2 << "\" fill=\"" << fill
+       << "\" fill-opacity=\"" << opacity << "\" stroke=\"" << stroke << "\" stroke-width=\"" << sw_ << "\"/>\n";
+  }
+
+  // The plan: each disk, each tool's path in execution order, its starts and
+  // lead-outs, and the necks of an automatic tool choice.
+  void tours() {
+    for (const Plunge& p : plan_.plunges) disk(p, kPalette[colour_[p.toolId] % 8], 0.22, kPalette[colour_[p.toolId] % 8]);
     // Each tool's path from faint (its first plunges) to strong (its last):
     // the order a limited tool grows its cut in, at a glance.
     for (const ToolCount& t : plan_.stats.perTool) {
@@ -153,6 +164,10 @@ class SvgPicture {
         for (size_t i = from; i <= to; ++i) s_ << mine[i]->x << "," << -mine[i]->y << " ";
         s_ << "\"/>\n";
       }
+      if (!mine.empty())  // where the tool starts: a ring round its first plunge
+        s_ << "<circle cx=\"" << mine.front()->x << "\" cy=\"" << -mine.front()->y << "\" r=\""
+           << 0.3 * mine.front()->diameter << "\" fill=\"none\" stroke=\"" << kPathPalette[colour_[t.toolId] % 8]
+           << "\" stroke-width=\"" << 3 * sw_ << "\"/>\n";
     }
     // Start holes (black rings), starts into solid or onto a hole (black dots)
     // and lead-outs (black ticks from the plunge's centre).
@@ -167,27 +182,48 @@ class SvgPicture {
         s_ << "<line x1=\"" << p.x << "\" y1=\"" << -p.y << "\" x2=\"" << p.leadOut->x << "\" y2=\"" << -p.leadOut->y
            << "\" stroke=\"#000\" stroke-width=\"" << 2 * sw_ << "\"/>\n";
     }
-  }
-
-  // What is left uncovered (red), the necks of an automatic tool choice, and
-  // over a sculptured floor a dot at each plunge, dark (deep) to light (high).
-  void marks() {
-    if (!plan_.uncovered.empty())
-      s_ << "<path d=\"" << pathData(plan_.uncovered)
-         << "\" fill=\"#e00000\" fill-rule=\"nonzero\" stroke=\"none\"/>\n";
     if (plan_.selection)
       for (const Neck& n : plan_.selection->necks)
         s_ << "<line x1=\"" << n.a.x << "\" y1=\"" << -n.a.y << "\" x2=\"" << n.b.x << "\" y2=\"" << -n.b.y
            << "\" stroke=\"#d000d0\" stroke-width=\"" << 3 * sw_ << "\" stroke-dasharray=\"" << 6 * sw_ << "\"/>\n";
-    if (depthDots_)
-      for (const Plunge& p : plan_.plunges)
-        s_ << "<rect x=\"" << p.x - 0.12 * p.diameter << "\" y=\"" << -p.y - 0.12 * p.diameter << "\" width=\""
-           << 0.24 * p.diameter << "\" height=\"" << 0.24 * p.diameter << "\" fill=\"" << depthColour(p.z)
-           << "\"/>\n";
+  }
+
+  // The stock left: the floor stock map (sculptured floors), what the disks
+  // leave on the walls (red), the disks' outlines for orientation, and each
+  // broken limit numbered where its worst is.
+  void stockLeft() {
+    if (plan_.stockMap)
+      s_ << stockMapSvg(*plan_.stockMap, stockScale_);
+    else  // a flat floor: cut to its allowance wherever the plunges reach
+      s_ << "<path d=\"" << pathData(plan_.accessible) << "\" fill=\"" << stockColour(0.0, 1.0)
+         << "\" fill-opacity=\"0.5\" fill-rule=\"nonzero\" stroke=\"none\"/>\n";
+    for (const Plunge& p : plan_.plunges)  // faint: where the plunges are, under what they leave
+      s_ << "<circle cx=\"" << p.x << "\" cy=\"" << -p.y << "\" r=\"" << p.diameter / 2
+         << "\" fill=\"none\" stroke=\"#444\" stroke-opacity=\"0.3\" stroke-width=\"" << 0.6 * sw_ << "\"/>\n";
+    if (!plan_.uncovered.empty())
+      s_ << "<path d=\"" << pathData(plan_.uncovered)
+         << "\" fill=\"#e00000\" fill-rule=\"nonzero\" stroke=\"none\"/>\n";
+    for (size_t k = 0; k < plan_.broken.size() && k < kMaxBrokenLines; ++k) {
+      const Vec2 at = plan_.broken[k].at;
+      s_ << "<circle cx=\"" << at.x << "\" cy=\"" << -at.y << "\" r=\"" << 0.6 * fs_
+         << "\" fill=\"white\" fill-opacity=\"0.8\" stroke=\"#d000d0\" stroke-width=\"" << 3 * sw_ << "\"/>\n";
+      s_ << "<text x=\"" << at.x << "\" y=\"" << -at.y + 0.35 * fs_
+         << "\" text-anchor=\"middle\" font-family=\"sans-serif\" font-weight=\"bold\" fill=\"#d000d0\" font-size=\""
+         << fs_ << "\">" << k + 1 << "</text>\n";
+    }
+  }
+
+  // Where each plunge stops: its disk filled dark (deep) to light (high).
+  void heights() {
+    std::vector<const Plunge*> order;
+    for (const Plunge& p : plan_.plunges) order.push_back(&p);
+    // Deepest last, on top: where the tool goes lowest stays visible.
+    std::stable_sort(order.begin(), order.end(), [](const Plunge* a, const Plunge* b) { return a->z > b->z; });
+    for (const Plunge* p : order) disk(*p, depthColour(p->z), 0.85, "#333");
   }
 
   std::string depthColour(double z) const {
-    const double t = (z - zLo_) / (zHi_ - zLo_);
+    const double t = zHi_ - zLo_ > 1e-9 ? (z - zLo_) / (zHi_ - zLo_) : 0.0;
     std::ostringstream c;
     c << "rgb(" << static_cast<int>(30 + 225 * t) << "," << static_cast<int>(20 + 200 * t) << ","
       << static_cast<int>(90 + 40 * (1 - t)) << ")";
@@ -210,60 +246,94 @@ class SvgPicture {
        << "\" fill=\"" << fill << "\"/>";
   }
 
-  // Counts, then a line per tool, the stock map's scale and the depth dots' scale.
   void legend() {
-    double y = -hi_.y - legendH_ + fs_ * 0.5;
+    y_ = -hi_.y - legendH_ + fs_ * 0.5;
     s_ << std::setprecision(2);
-    text(lo_.x, y + fs_,
-         std::to_string(plan_.stats.plungeCount) + " plunges, " + number(100.0 * plan_.stats.coverage) +
-             " % covered (red: left), travel " + number(plan_.stats.travelLength) + " mm");
-    y += 1.4 * fs_;
+    if (view_ == SvgView::Plan) planLegend();
+    if (view_ == SvgView::Stock) stockLegend();
+    if (view_ == SvgView::Heights) heightsLegend();
+  }
+  void line(double indent, const std::string& what) {
+    text(lo_.x + indent, y_ + fs_, what);
+    y_ += 1.4 * fs_;
+  }
+
+  void planLegend() {
+    line(0, "The plan: " + std::to_string(plan_.stats.plungeCount) + " plunges, travel " +
+                number(plan_.stats.travelLength) + " mm, about " + number(plan_.stats.estimatedMinutes) + " min");
     for (const ToolCount& t : plan_.stats.perTool) {
       const char* c = kPalette[colour_[t.toolId] % 8];
-      s_ << "<circle cx=\"" << lo_.x + fs_ * 0.5 << "\" cy=\"" << y + fs_ * 0.6 << "\" r=\"" << fs_ * 0.45
+      s_ << "<circle cx=\"" << lo_.x + fs_ * 0.5 << "\" cy=\"" << y_ + fs_ * 0.6 << "\" r=\"" << fs_ * 0.45
          << "\" fill=\"" << c << "\" fill-opacity=\"0.5\" stroke=\"" << c << "\"  stroke-width=\"" << sw_ << "\"/>\n";
-      text(lo_.x + fs_ * 1.4, y + fs_,
+      line(fs_ * 1.4,
            "T" + std::to_string(t.toolId) + " D" + number(t.diameter) + ": " + std::to_string(t.count) + " plunges");
-      y += 1.4 * fs_;
     }
     int starts = 0;
     for (const Plunge& p : plan_.plunges) starts += p.start && !p.startHole;
-    text(lo_.x, y + fs_,
-         "black: " + std::to_string(starts) + " starts (dots), " + std::to_string(plan_.stats.startHoles) +
-             " start holes (rings), " + std::to_string(plan_.stats.leadOuts) + " lead-outs (ticks)");
-    y += 1.4 * fs_;
-    text(lo_.x, y + fs_, "each tool's path: faint (first plunges) to strong (last)");
-    y += 1.4 * fs_;
+    line(0, "its path: ring at its first plunge, faint (first) to strong (last)");
+    line(0, "black: " + std::to_string(starts) + " starts (dots), " + std::to_string(plan_.stats.startHoles) +
+                " start holes (rings), " + std::to_string(plan_.stats.leadOuts) + " lead-outs (ticks)");
+  }
+
+  void stockLegend() {
+    line(0, "Stock left: walls up to " + number(plan_.stats.maxWallStockLeft) + " mm (red), " +
+                number(100.0 * plan_.stats.coreCoverage) + " % of the core cut");
     if (plan_.stockMap) {
       for (int k = 0; k <= 4; ++k) {
-        swatch(lo_.x + k * fs_, y, stockColour(0.5 * k * stockScale_, stockScale_));
+        swatch(lo_.x + k * fs_, y_, stockColour(0.5 * k * stockScale_, stockScale_));
         s_ << "\n";
       }
-      text(lo_.x + fs_ * 5.4, y + fs_,
-           "floor stock, " + std::string(in_.maxFloorStock > 0.0 ? "limit " : "yellow ") + number(stockScale_) +
-               ": max " + number(plan_.stats.maxFloorStockLeft) + " mm");
-      y += 1.4 * fs_;
+      line(fs_ * 5.4, "floor stock, " + std::string(in_.maxFloorStock > 0.0 ? "limit " : "yellow ") +
+                          number(stockScale_) + ": max " + number(plan_.stats.maxFloorStockLeft) + " mm");
+    } else {
+      swatch(lo_.x, y_, stockColour(0.0, 1.0));
+      line(fs_ * 1.4, "floor: flat, cut to its allowance");
     }
-    if (depthDots_) {
-      swatch(lo_.x, y, depthColour(zLo_));
-      swatch(lo_.x + fs_, y, depthColour(zHi_));
-      s_ << "\n";
-      text(lo_.x + fs_ * 2.4, y + fs_, "stop height " + number(zLo_) + " (dark) to " + number(zHi_) + " mm");
+    if (plan_.broken.empty()) line(0, "every limit kept");
+    for (size_t k = 0; k < plan_.broken.size() && k < kMaxBrokenLines; ++k) {
+      const BrokenLimit& b = plan_.broken[k];
+      line(0, std::to_string(k + 1) + ": " + b.limit + " broken " + std::to_string(b.count) + " x, worst " +
+                  number(b.worst) + " against " + number(b.asked));
     }
   }
 
+  void heightsLegend() {
+    line(0, "Stop heights: " + std::to_string(plan_.stats.plungeCount) + " plunges");
+    swatch(lo_.x, y_, depthColour(zLo_));
+    swatch(lo_.x + fs_, y_, depthColour(zHi_));
+    s_ << "\n";
+    line(fs_ * 2.4, number(zLo_) + " mm (dark) to " + number(zHi_) + " mm (light)");
+  }
+
+  static constexpr size_t kMaxBrokenLines = 6;
   const PlanInput& in_;
   const Plan& plan_;
+  SvgView view_;
   std::ostringstream s_;
   Vec2 lo_, hi_;
-  double size_ = 0.0, sw_ = 0.0, fs_ = 0.0, legendH_ = 0.0, stockScale_ = 1.0;
+  double size_ = 0.0, sw_ = 0.0, fs_ = 0.0, legendH_ = 0.0, stockScale_ = 1.0, y_ = 0.0;
   std::map<int, int> colour_;  // tool id -> palette slot
   double zLo_ = INFINITY, zHi_ = -INFINITY;
-  bool depthDots_ = false;
 };
 
 }  // namespace
 
-std::string planToSvg(const PlanInput& input, const Plan& plan) { return SvgPicture(input, plan).draw(); }
+std::vector<SvgView> svgViews(const PlanInput& input) {
+  if (input.floor.kind == Floor::Kind::Flat) return {SvgView::Plan, SvgView::Stock};
+  return {SvgView::Plan, SvgView::Stock, SvgView::Heights};
+}
+
+const char* svgViewName(SvgView view) {
+  switch (view) {
+    case SvgView::Plan: return "plan";
+    case SvgView::Stock: return "stock";
+    case SvgView::Heights: return "heights";
+  }
+  return "plan";
+}
+
+std::string planToSvg(const PlanInput& input, const Plan& plan, SvgView view) {
+  return SvgPicture(input, plan, view).draw();
+}
 
 }  // namespace plunge

@@ -7,12 +7,13 @@ recompute, post with the linuxcnc post. Writes into $PLUNGE_OUT (default ./out):
   plunge_example.FCStd   the document, with its view providers: open it in
                          FreeCAD, simulate, edit, post;
   plunge_rough.ngc       the posted G-code;
-  plunge_rough.svg       the plan picture;
+  plunge_rough.svg       the plan's pictures: the plan; -stock.svg the stock left;
+                         -heights.svg the stop heights;
   summary.txt            plunges per tool, coverage, travel, estimated time;
   demo_input.json        the planner's input for the operation (demo_floor.brep: its floor);
   bits/                  the tool bit files;
   deep_pocket.*          the second demo, where plunging pays: a 75 mm deep
-                         die pocket (deep_pocket_summary.txt, .ngc, .svg, .FCStd).
+                         die pocket (deep_pocket_summary.txt, .ngc, .svg, -stock.svg, .FCStd).
 A failure is written to demo_error.txt (the GUI has no terminal)."""
 import json
 import os
@@ -25,6 +26,15 @@ import FreeCAD
 HERE = os.environ.get("PLUNGE_EXAMPLES") or os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)  # example_part; the addon is the installed one
 OUT = os.path.abspath(os.environ.get("PLUNGE_OUT", "out"))
+
+
+def copy_pictures(op, stem):
+    """The operation's pictures into OUT: stem.svg (the plan), stem-stock.svg, stem-heights.svg."""
+    from freecad_plugin import PlungeRough
+    for _, name, _ in PlungeRough.PICTURES:
+        path = PlungeRough.plan_picture(op, name)
+        if os.path.exists(path):
+            shutil.copyfile(path, os.path.join(OUT, stem + name[len("plan"):]))
 
 
 def main():
@@ -57,7 +67,7 @@ def main():
     gcode = compat.post_job(job, "linuxcnc", "--no-show-editor")
     with open(os.path.join(OUT, "plunge_rough.ngc"), "w") as f:
         f.write(gcode)
-    shutil.copyfile(PlungeRough.plan_picture(op), os.path.join(OUT, "plunge_rough.svg"))
+    copy_pictures(op, "plunge_rough")
     doc.saveAs(os.path.join(OUT, "plunge_example.FCStd"))
     # The planner's input for this operation, with its floor faces beside it: the
     # command-line tool plans it again (tests/bench/bench_mills.py does).
@@ -120,7 +130,7 @@ def deep_pocket_demo():
         raise RuntimeError("the deep pocket's operation made no plan: " + op.Summary)
     with open(os.path.join(OUT, "deep_pocket.ngc"), "w") as f:
         f.write(compat.post_job(job, "linuxcnc", "--no-show-editor"))
-    shutil.copyfile(PlungeRough.plan_picture(op), os.path.join(OUT, "deep_pocket.svg"))
+    copy_pictures(op, "deep_pocket")
     doc.saveAs(os.path.join(OUT, "deep_pocket.FCStd"))
     with open(os.path.join(OUT, "deep_pocket_summary.txt"), "w") as f:
         f.write("Plunge Rough on the deep pocket %s.%s, 75 mm deep (FreeCAD %s)\n%s\n" % (

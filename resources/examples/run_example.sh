@@ -42,5 +42,5 @@ fi
 cat "$ROOT/out/summary.txt"
 echo
 cat "$ROOT/out/deep_pocket_summary.txt"
-echo "wrote $ROOT/out: plunge_rough.ngc, plunge_rough.svg, summary.txt, plunge_example.FCStd, bits/;"
-echo "  the deep pocket: deep_pocket.ngc, deep_pocket.svg, deep_pocket_summary.txt, deep_pocket.FCStd"
+echo "wrote $ROOT/out: plunge_rough.ngc, plunge_rough.svg (-stock, -heights: the stock left, the stop heights), summary.txt, plunge_example.FCStd, bits/;"
+echo "  the deep pocket: deep_pocket.ngc, deep_pocket.svg, deep_pocket-stock.svg, deep_pocket_summary.txt, deep_pocket.FCStd"

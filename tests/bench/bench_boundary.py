@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Big boundaries: planning time against the boundary's vertex count (a table
-for the README). The boundary is a smooth closed curve of about 600 x 400 mm
+for docs/benchmarks.md). The boundary is a smooth closed curve of about 600 x 400 mm
 (a B-spline face's outline at a finer and finer chordal tolerance), plunged
 with 12 and 6 mm tools, 0.5 mm radial allowance; times are the command-line
 tool's whole run, best of three.

@@ -3,7 +3,7 @@
 with the square and honeycomb grids (same tools, same time model) and prints,
 side by side, plunges per tool, coverage, travel, estimated time and planning
 time; then the automatic tool choice per shape from a library (a table each for
-the README).
+docs/benchmarks.md).
 
     /usr/bin/python3 tests/bench/bench_compare.py [shape ...]
 """

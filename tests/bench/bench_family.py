@@ -22,7 +22,7 @@ planner refuses are skipped (the same ones every run) and counted.
 
 Prints per family and overall the median and worst ratio per limit, the worst
 pockets, the over-limit plunges (should be 0), the planning time, and a
-markdown table for the README:
+markdown table for docs/benchmarks.md:
 
     nice /usr/bin/python3 tests/bench/bench_family.py --seed 0 --count 8 --limits 0.5 0.25 0.15 --jobs 1
 

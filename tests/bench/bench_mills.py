@@ -2,7 +2,7 @@
 """Real plunge mills benchmark: plunges and estimated cycle time with a radial
 engagement limit of 0.5 x D and 0.25 x D against the unlimited plan, and the
 time stock-aware heights save against retracting to the safe height (a table
-for the README). Shapes: the test shapes, the examples and, when the README's
+for docs/benchmarks.md). Shapes: the test shapes, the examples and, when the README's
 main command has run, the FreeCAD demo's operation (out/demo_input.json).
 
     /usr/bin/python3 tests/bench/bench_mills.py [shape ...]

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Planning benchmark: plans each test shape with the CLI, several runs each, and
-prints the median planning time with the plan's figures (a table for the README),
+prints the median planning time with the plan's figures (a table for docs/benchmarks.md),
 beside the figure recorded the last time (tests/bench/plan_figures.json), so a
 regression shows. Sculptured floors: the example and, when the README's main
 command has run, the FreeCAD demo's operation (out/demo_input.json); with

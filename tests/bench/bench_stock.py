@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The stock a plan leaves (README, "Stock left"): for every test shape and
+"""The stock a plan leaves (docs/benchmarks.md, "Stock left"): for every test shape and
 example, the plan with the default 1 mm wall band against the honeycomb grid of
 the same tools and against covering to 99.6 % (max_wall_stock 0): plunges, core
 coverage, thickest wall stock; then the sculptured floors with and without the

@@ -1,8 +1,8 @@
 """Plunge Rough against FreeCAD's own Adaptive clearing: the same pockets, the
 same 20 mm tool, both posted with FreeCAD's linuxcnc post and timed from the
-G-code (a table for the README).
+G-code (a table for docs/benchmarks.md).
 
-Run headless inside FreeCAD, from the repository after the build (README: the
+Run headless inside FreeCAD, from the repository after the build (docs/cli.md: the
 planner module comes from build/cpp, the addon from the source tree):
 
     freecadcmd tests/bench/bench_vs_adaptive.py

@@ -1,6 +1,10 @@
-// The plan's picture (svg.hpp).
+// The plan's pictures (svg.hpp): one view per question.
 #include <gtest/gtest.h>
+
+#include <cstdio>
 #include <string>
+#include <vector>
+
 #include "plunge/json.hpp"
 #include "plunge/plan.hpp"
 #include "plunge/svg.hpp"
@@ -8,14 +12,85 @@
 
 using namespace plunge;
 
-TEST(Svg, SvgDrawsEveryPlungeAndALegend) {
+namespace {
+
+// The <circle .../> elements of a picture, each as its text.
+std::vector<std::string> circles(const std::string& svg) {
+  std::vector<std::string> out;
+  for (size_t at = svg.find("<circle"); at != std::string::npos; at = svg.find("<circle", at + 1))
+    out.push_back(svg.substr(at, svg.find("/>", at) - at));
+  return out;
+}
+
+// The circle element drawn for a plunge's disk (its centre, y drawn downwards, and radius).
+std::string diskOf(const Plunge& p) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "cx=\"%.3f\" cy=\"%.3f\" r=\"%.3f\"", p.x, -p.y, p.diameter / 2);
+  return buf;
+}
+
+size_t count(const std::vector<std::string>& elements, const std::string& what) {
+  size_t n = 0;
+  for (const std::string& e : elements) n += e.find(what) != std::string::npos;
+  return n;
+}
+
+}  // namespace
+
+TEST(Svg, PlanViewDrawsEveryPlungeItsToursAndALegend) {
   PlanInput in = planInputFromJson(test::smallJobJson());
   const Plan p = plan(in);
-  const std::string svg = planToSvg(in, p);
-  size_t circles = 0;
-  for (size_t at = svg.find("<circle"); at != std::string::npos; at = svg.find("<circle", at + 1)) ++circles;
-  EXPECT_EQ(circles, p.plunges.size() + p.stats.perTool.size());  // plunges + legend swatches
-  EXPECT_NE(svg.find("% covered"), std::string::npos);
+  const std::string svg = planToSvg(in, p, SvgView::Plan);
+  const std::vector<std::string> cs = circles(svg);
+  for (const Plunge& q : p.plunges) EXPECT_GE(count(cs, diskOf(q)), 1u) << diskOf(q);
+  // The disks, a legend swatch and a first-plunge ring per tool.
+  EXPECT_EQ(cs.size(), p.plunges.size() + 2 * p.stats.perTool.size());
+  size_t tours = 0;
+  for (size_t at = svg.find("<polyline"); at != std::string::npos; at = svg.find("<polyline", at + 1)) ++tours;
+  EXPECT_GE(tours, p.stats.perTool.size());
   EXPECT_NE(svg.find("T4"), std::string::npos);
+  EXPECT_EQ(svg.find("stop height"), std::string::npos);  // not this view's question
   EXPECT_EQ(svg.rfind("</svg>"), svg.size() - 7);
+}
+
+TEST(Svg, StockViewShowsWhatIsLeftAndEveryBrokenLimit) {
+  PlanInput in = planInputFromJson(test::smallJobJson());
+  in.minCoverage = 0.9999;  // more than the wall band lets the disks cover: said, and marked
+  in.maxWallStock = 0.0;
+  const Plan p = plan(in);
+  const std::string svg = planToSvg(in, p, SvgView::Stock);
+  ASSERT_FALSE(p.uncovered.empty());
+  EXPECT_NE(svg.find("fill=\"#e00000\""), std::string::npos);  // what the disks leave, in red
+  EXPECT_EQ(svg.find("<polyline"), std::string::npos);        // no tour here
+  const std::vector<std::string> cs = circles(svg);
+  for (const Plunge& q : p.plunges) EXPECT_EQ(count(cs, diskOf(q)), 1u) << diskOf(q);  // faint outlines
+  for (size_t k = 0; k < p.broken.size() && k < 6; ++k) {
+    EXPECT_NE(svg.find(std::to_string(k + 1) + ": " + p.broken[k].limit + " broken"), std::string::npos);
+  }
+  if (p.broken.empty()) {
+    EXPECT_NE(svg.find("every limit kept"), std::string::npos);
+  }
+}
+
+TEST(Svg, HeightsOnlyOverASculpturedFloorDeepestOnTop) {
+  PlanInput in = planInputFromJson(test::smallJobJson());
+  EXPECT_EQ(svgViews(in), (std::vector<SvgView>{SvgView::Plan, SvgView::Stock}));
+  in.floor.kind = Floor::Kind::Expression;
+  in.floor.expression = "-20 + 0.05 * x";
+  const Plan p = plan(in);
+  ASSERT_EQ(svgViews(in).size(), 3u);
+  const std::string svg = planToSvg(in, p, SvgView::Heights);
+  const std::vector<std::string> cs = circles(svg);
+  ASSERT_EQ(cs.size(), p.plunges.size());
+  // Drawn from the highest stop to the deepest, so the deepest stays in sight.
+  std::vector<double> drawn;
+  for (const std::string& c : cs)
+    for (const Plunge& q : p.plunges)
+      if (c.find(diskOf(q)) != std::string::npos) {
+        drawn.push_back(q.z);
+        break;
+      }
+  ASSERT_EQ(drawn.size(), cs.size());
+  for (size_t k = 1; k < drawn.size(); ++k) EXPECT_LE(drawn[k], drawn[k - 1]);
+  EXPECT_LT(drawn.back(), drawn.front());  // the floor slopes: heights differ
 }

@@ -381,6 +381,29 @@ def heights(mesh_objects, points, top):
     return out
 
 
+def show_pictures(page):
+    """Each of the page's picture buttons clicked as a user does: {button: the
+    shown picture's (width, height), or None when the button is off}; each
+    window on the screen saved as example_<button>.png, then closed."""
+    shown = {}
+    for name in ("showPlan", "showStock", "showHeights"):
+        button = page.form.findChild(QtGui.QToolButton, name)
+        if button is None or not button.isEnabled():
+            shown[name] = None
+            continue
+        button.click()
+        wait(1)
+        dialog = page.picture
+        pixmap = dialog.image.pixmap()
+        shown[name] = None if pixmap is None or pixmap.isNull() else [pixmap.width(), pixmap.height()]
+        screenshot("example_%s.png" % name)
+        dialog.close()
+        del dialog, pixmap, button
+        page.picture = None
+        wait(0.5)
+    return shown
+
+
 def example_document():
     """Phase 1: the shipped example."""
     from freecad_plugin import PlungeRough, companions, compat
@@ -405,6 +428,7 @@ def example_document():
     panel = open_panel(op)
     result["example"]["panel"] = panel is not None and panel.featurePages[-1].form.findChild(
         QtGui.QListWidget, "toolControllers") is not None
+    result["example"]["pictures"] = show_pictures(panel.featurePages[-1]) if panel is not None else {}
     # No wrapper of a panel's widgets may outlive the panel: PySide hands a
     # stale wrapper to whatever is made later at the same address (another
     # widget, or an event given to a spin box's filter).

@@ -73,6 +73,11 @@ def result(out):
     program = open(os.path.join(example, "deep_pocket.ngc")).read()
     changes = re.findall(r"^\s*(?:N\d+\s+)?M0?6\s+T(\d+)|^\s*(?:N\d+\s+)?T(\d+)\s+M0?6", program, re.M)
     assert changes and len(changes) == len(chosen), (chosen, changes)
+    # Each demo's pictures, one per question: stop heights only over the
+    # first demo's sculptured floor, not over the die pocket's flat one.
+    pictures = sorted(f for f in os.listdir(example) if f.endswith(".svg"))
+    assert pictures == ["deep_pocket-stock.svg", "deep_pocket.svg", "plunge_rough-heights.svg",
+                        "plunge_rough-stock.svg", "plunge_rough.svg"], pictures
     result_file = os.path.join(out, "gui_result.json")
     if os.path.exists(result_file):
         os.remove(result_file)
@@ -114,6 +119,12 @@ def test_example_document_is_a_gui_document(result):
     # every plunger once); saved solids are tessellation-exact to about 0.3 %.
     assert len(plungers) == 3 and all(abs(w - d) < 0.01 * d for w, d in plungers)
     assert ex["panel"] and ex["after_cancel"] == {"same_plan": True, "operations": True}
+    # The panel's picture buttons: the example's floor is sculptured, so the
+    # plan, the stock left and the stop heights are each shown, drawn whole.
+    pictures = ex["pictures"]
+    assert set(pictures) == {"showPlan", "showStock", "showHeights"}, pictures
+    for name, size in pictures.items():
+        assert size is not None and min(size) > 200, (name, size)
 
 
 def test_a_long_plan_cancels_within_a_second(result):

@@ -67,3 +67,64 @@ def test_package_metadata():
     assert running >= minimum
     tested = re.findall(r"\d+\.\d+", meta.Description.split("Tested with FreeCAD ")[1].split("(")[0])
     assert "%d.%d" % running in tested, tested
+
+
+MODDIR = r"""
+import FreeCAD
+print("MODDIR=" + FreeCAD.getUserAppDataDir() + "Mod")
+"""
+
+
+def test_a_clone_into_mod_says_how_to_build_the_planner_and_then_plans(tmp_path):
+    """FreeCAD's Addon Manager clones the repository into the user's Mod folder:
+    the sources alone. FreeCAD started headless says that the planner is
+    missing, with the one command that builds and installs it; that command
+    run, the clone plans and has its plunge-mill bits. The command builds the
+    planner only where PLUNGE_TEST_ADDON_BUILD=1 (one of CI's fresh-machine
+    runs: minutes); elsewhere the clone's build/ is this build tree, and the
+    command runs without --build."""
+    import shutil
+    env = dict(os.environ, XDG_DATA_HOME=str(tmp_path / "data"), XDG_CONFIG_HOME=str(tmp_path / "config"))
+    env.pop("PYTHONPATH", None)
+
+    def freecad(script):
+        path = tmp_path / "script.py"
+        path.write_text(script)
+        run = subprocess.run(["freecadcmd", str(path)], cwd=str(tmp_path), env=env, capture_output=True, text=True,
+                             timeout=300)
+        return run.stdout.replace("\r", "\n") + run.stderr.replace("\r", "\n")
+
+    mod = [l for l in freecad(MODDIR).splitlines() if l.startswith("MODDIR=")][0][len("MODDIR="):]
+    clone = os.path.join(mod, "PlungeRough")
+    shutil.copytree(ROOT, clone, ignore=shutil.ignore_patterns(
+        ".git", "build", "build-*", "out", "Tools", "__pycache__", ".pytest_cache", "*.so", "*.so.*"))
+    said = freecad(MODDIR)
+    m = re.search(r"PlungeRough: the compiled planner .* not installed .*: build and install it for this FreeCAD, "
+                  r"as root on Debian: (sh '[^']+' --build)", said)
+    assert m, said[-3000:]
+    command = m.group(1)
+    assert command == "sh '%s/resources/install_addon.sh' --build" % clone
+    # What FreeCAD's GUI does once it has started (InitGui.py): the bits made
+    # in the clone and registered, once.
+    made = freecad("from freecad_plugin import plunge_mill\n"
+                   "print('BITS=%d,%d' % (len(plunge_mill.ensure_installed()), len(plunge_mill.ensure_installed())))")
+    counts = re.search(r"BITS=(\d+),(\d+)", made)
+    assert counts and int(counts.group(1)) > 0 and counts.group(2) == "0", made[-2000:]
+    assert "the plunge-mill tool bits are in %s" % os.path.join(clone, "Tools") in made
+    if os.environ.get("PLUNGE_TEST_ADDON_BUILD") != "1":
+        os.symlink(BUILD, os.path.join(clone, "build"))
+        command = command[:-len(" --build")]
+    run = subprocess.run(["sh", "-c", command], env=env, capture_output=True, text=True, timeout=3600)
+    assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
+    check = tmp_path / "check.py"
+    check.write_text(CHECK)
+    out = subprocess.run(["freecadcmd", str(check)], cwd=str(tmp_path), env=env, capture_output=True, text=True,
+                         timeout=300)
+    lines = [l for l in out.stdout.replace("\r", "\n").splitlines() if l.startswith("RESULT=")]
+    assert lines, out.stdout[-2000:] + out.stderr[-2000:]
+    result = json.loads(lines[0][len("RESULT="):])
+    assert result["plugin"].startswith(clone) and result["plunge"].startswith(clone)
+    assert result["plunges"] > 0 and result["core_coverage"] > 0.9999
+    assert "not installed" not in out.stdout + out.stderr  # said no more
+    bits = os.listdir(os.path.join(clone, "Tools", "Bit"))
+    assert bits and all(b.endswith(".fctb") for b in bits)

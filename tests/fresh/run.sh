@@ -107,7 +107,7 @@ fi
 run_in_chroot() {
   say "\$ $1"
   env -i HOME=/root TERM=dumb LANG=C.UTF-8 PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
-    PLUNGE_WERROR="${PLUNGE_WERROR:-OFF}" \
+    PLUNGE_WERROR="${PLUNGE_WERROR:-OFF}" PLUNGE_TEST_ADDON_BUILD="${PLUNGE_TEST_ADDON_BUILD:-0}" \
     chroot "$DIR" /bin/sh -c "cd /root/PlungeRough && $1"
 }
 

@@ -44,10 +44,15 @@ def test_plans_every_shape(cli, tmp_path, name):
     assert diameters == sorted(diameters, reverse=True)
     floor = data["floor"]["z"] + data["allowance"]["floor"]
     assert all(abs(p["z"] - floor) < 1e-9 for p in plan["plunges"])
-    # The picture: one circle per plunge plus one legend swatch per tool.
+    # The plan's picture: one circle per plunge, plus a legend swatch and a
+    # first-plunge ring per tool; the stock left beside it, each plunge's disk
+    # outlined there; no stop heights over a flat floor.
     root = ET.parse(svg).getroot()
     circles = root.findall("{http://www.w3.org/2000/svg}circle")
-    assert len(circles) == len(plan["plunges"]) + len(stats["per_tool"])
+    assert len(circles) == len(plan["plunges"]) + 2 * len(stats["per_tool"])
+    stock = ET.parse(tmp_path / "plan-stock.svg").getroot()
+    assert len(stock.findall("{http://www.w3.org/2000/svg}circle")) == len(plan["plunges"])
+    assert not (tmp_path / "plan-heights.svg").exists()
     # The G-code: one feed move down per plunge and per peck, one across per lead-out.
     feeds = [line for line in nc.read_text().splitlines() if line.startswith("G1 ")]
     assert len([f for f in feeds if " Z" in f]) == len(plan["plunges"]) + sum(len(p.get("pecks", []))

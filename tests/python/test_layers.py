@@ -1,4 +1,4 @@
-"""The library's layers (README, "How it plans"): every #include of cpp/ names a
+"""The library's layers (docs/architecture.md): every #include of cpp/ names a
 file of its own layer or below, and every file is in the drawing."""
 import os
 import re
@@ -8,8 +8,8 @@ CPP = os.path.join(ROOT, "cpp")
 
 
 def layers():
-    """{module: layer} from the README's drawing (the block after <!-- layers -->)."""
-    text = open(os.path.join(ROOT, "README.md")).read()
+    """{module: layer} from docs/architecture.md's drawing (the block after <!-- layers -->)."""
+    text = open(os.path.join(ROOT, "docs", "architecture.md")).read()
     block = text.split("<!-- layers -->", 1)[1].split("```text", 1)[1].split("```", 1)[0]
     out = {}
     for line in block.strip().splitlines():
@@ -46,7 +46,7 @@ def includes(path):
 def test_every_file_is_drawn():
     drawn = layers()
     missing = sorted({module_of(p) for p in sources()} - set(drawn))
-    assert not missing, "not in the README's layer drawing: %s" % missing
+    assert not missing, "not in the layer drawing of docs/architecture.md: %s" % missing
     stale = sorted(set(drawn) - {module_of(p) for p in sources()})
     assert not stale, "drawn but not in cpp/: %s" % stale
 

@@ -1,13 +1,23 @@
-// The plan's picture (SVG).
+// The plan's pictures (SVG), one per question.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "plunge/types.hpp"
 
 namespace plunge {
 
-// The pocket, its islands, every plunge disk coloured by tool, the tool paths,
-// what is left uncovered (red) and a legend (tool, count, coverage, travel).
-std::string planToSvg(const PlanInput& input, const Plan& plan);
+// Plan: each plunge disk coloured by tool, each tool's path in order, starts
+// and lead-outs. Stock: what the plan leaves (the wall band in red, the floor
+// stock map on sculptured floors) and every broken limit, numbered where its
+// worst is. Heights: each plunge's stop height (sculptured floors only).
+enum class SvgView { Plan, Stock, Heights };
+
+// The views a plan of this input has: Heights only over a sculptured floor.
+std::vector<SvgView> svgViews(const PlanInput& input);
+// "plan", "stock", "heights": the file suffix and the Python key.
+const char* svgViewName(SvgView view);
+
+std::string planToSvg(const PlanInput& input, const Plan& plan, SvgView view = SvgView::Plan);
 
 }  // namespace plunge
