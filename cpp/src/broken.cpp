@@ -1,4 +1,4 @@
-#include "plunge/broken.hpp"
+#include "broken.hpp"
 
 #include <iomanip>
 #include <sstream>

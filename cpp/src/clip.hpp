@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "plunge/geometry.hpp"
-#include "plunge/polygon.hpp"
+#include "polygon.hpp"
 
 namespace plunge::clip {
 

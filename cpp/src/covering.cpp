@@ -1,4 +1,4 @@
-#include "plunge/covering.hpp"
+#include "covering.hpp"
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

@@ -1,9 +1,9 @@
-#include "plunge/cuts.hpp"
+#include "cuts.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "plunge/depth.hpp"
+#include "depth.hpp"
 
 namespace plunge {
 

@@ -1,4 +1,4 @@
-#include "plunge/depth.hpp"
+#include "depth.hpp"
 
 #include <algorithm>
 #include <cmath>

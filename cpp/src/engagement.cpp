@@ -1,4 +1,4 @@
-#include "plunge/engagement.hpp"
+#include "engagement.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,10 +11,10 @@
 #include <tuple>
 #include <unordered_map>
 
-#include "plunge/covering.hpp"
-#include "plunge/cuts.hpp"
+#include "covering.hpp"
+#include "cuts.hpp"
 #include "plunge/error.hpp"
-#include "plunge/polygon.hpp"
+#include "polygon.hpp"
 #include "plunge/sequencing.hpp"
 
 namespace plunge {

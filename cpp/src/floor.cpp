@@ -1,4 +1,4 @@
-#include "plunge/floor.hpp"
+#include "floor.hpp"
 
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>

@@ -1,4 +1,4 @@
-#include "plunge/grid.hpp"
+#include "grid.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "detail.hpp"
 #include "plunge/error.hpp"
-#include "plunge/polygon.hpp"
+#include "polygon.hpp"
 
 namespace plunge {
 

@@ -1,4 +1,4 @@
-#include "plunge/heightfield.hpp"
+#include "heightfield.hpp"
 
 #include <algorithm>
 #include <cmath>

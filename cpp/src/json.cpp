@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "plunge/error.hpp"
-#include "plunge/limits.hpp"
+#include "limits.hpp"
 
 namespace plunge {
 

@@ -1,13 +1,13 @@
-#include "plunge/limits.hpp"
+#include "limits.hpp"
 
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 
 #include "detail.hpp"
-#include "plunge/covering.hpp"
+#include "covering.hpp"
 #include "plunge/error.hpp"
-#include "plunge/polygon.hpp"
+#include "polygon.hpp"
 #include "plunge/tools.hpp"
 
 namespace plunge {

@@ -1,4 +1,4 @@
-#include "plunge/medial.hpp"
+#include "medial.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include <boost/polygon/voronoi.hpp>
 
-#include "plunge/polygon.hpp"
+#include "polygon.hpp"
 
 namespace {
 struct IPoint {

@@ -1,4 +1,4 @@
-#include "plunge/motion.hpp"
+#include "motion.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,11 +8,11 @@
 #include <sstream>
 
 #include "detail.hpp"
-#include "plunge/covering.hpp"
-#include "plunge/cuts.hpp"
+#include "covering.hpp"
+#include "cuts.hpp"
 #include "plunge/error.hpp"
-#include "plunge/polygon.hpp"
-#include "plunge/broken.hpp"
+#include "polygon.hpp"
+#include "broken.hpp"
 
 namespace plunge {
 

@@ -1,4 +1,4 @@
-#include "plunge/packing.hpp"
+#include "packing.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "plunge/polygon.hpp"
+#include "polygon.hpp"
 
 #include <algorithm>
 #include <limits>

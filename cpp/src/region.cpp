@@ -1,4 +1,4 @@
-#include "plunge/region.hpp"
+#include "region.hpp"
 
 #include <algorithm>
 #include <cmath>

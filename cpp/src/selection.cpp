@@ -1,4 +1,4 @@
-#include "plunge/selection.hpp"
+#include "selection.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,11 +9,11 @@
 #include <optional>
 
 #include "detail.hpp"
-#include "plunge/covering.hpp"
+#include "covering.hpp"
 #include "plunge/error.hpp"
-#include "plunge/limits.hpp"
+#include "limits.hpp"
 #include "plunge/types.hpp"
-#include "plunge/polygon.hpp"
+#include "polygon.hpp"
 #include "plunge/tools.hpp"
 
 namespace plunge {

@@ -1,4 +1,4 @@
-#include "plunge/stock.hpp"
+#include "stock.hpp"
 
 #include <algorithm>
 #include <array>

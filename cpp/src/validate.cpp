@@ -1,4 +1,4 @@
-#include "plunge/validate.hpp"
+#include "validate.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,11 +6,11 @@
 #include <set>
 #include <string>
 
-#include "plunge/depth.hpp"
+#include "depth.hpp"
 #include "plunge/error.hpp"
-#include "plunge/grid.hpp"
-#include "plunge/limits.hpp"
-#include "plunge/region.hpp"
+#include "grid.hpp"
+#include "limits.hpp"
+#include "region.hpp"
 #include "plunge/tools.hpp"
 
 namespace plunge {

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <random>
 
-#include "plunge/depth.hpp"
+#include "depth.hpp"
 
 using namespace plunge;
 

@@ -2,8 +2,8 @@
 
 #include <random>
 
-#include "plunge/covering.hpp"
-#include "plunge/polygon.hpp"
+#include "covering.hpp"
+#include "polygon.hpp"
 #include "testutil.hpp"
 
 using namespace plunge;

@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "plunge/cuts.hpp"
+#include "cuts.hpp"
 
 using namespace plunge;
 

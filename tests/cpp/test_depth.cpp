@@ -18,7 +18,7 @@
 #include <random>
 #include <sstream>
 
-#include "plunge/depth.hpp"
+#include "depth.hpp"
 #include "plunge/error.hpp"
 
 using namespace plunge;

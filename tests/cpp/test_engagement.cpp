@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <map>
 
-#include "plunge/cuts.hpp"
-#include "plunge/engagement.hpp"
+#include "cuts.hpp"
+#include "engagement.hpp"
 #include "plunge/error.hpp"
-#include "plunge/heightfield.hpp"
+#include "heightfield.hpp"
 #include "plunge/json.hpp"
-#include "plunge/polygon.hpp"
+#include "polygon.hpp"
 #include "plunge/plan.hpp"
 #include "testutil.hpp"
 

@@ -4,8 +4,8 @@
 #include <random>
 
 #include "plunge/error.hpp"
-#include "plunge/grid.hpp"
-#include "plunge/polygon.hpp"
+#include "grid.hpp"
+#include "polygon.hpp"
 #include "testutil.hpp"
 
 using namespace plunge;

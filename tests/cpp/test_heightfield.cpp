@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "plunge/heightfield.hpp"
+#include "heightfield.hpp"
 
 using namespace plunge;
 

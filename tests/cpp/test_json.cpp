@@ -11,7 +11,7 @@
 #include "plunge/error.hpp"
 #include "plunge/json.hpp"
 #include "plunge/plan.hpp"
-#include "plunge/validate.hpp"
+#include "validate.hpp"
 #include "testutil.hpp"
 
 using namespace plunge;

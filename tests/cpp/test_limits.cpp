@@ -7,9 +7,9 @@
 
 #include "plunge/error.hpp"
 #include "plunge/json.hpp"
-#include "plunge/limits.hpp"
+#include "limits.hpp"
 #include "plunge/plan.hpp"
-#include "plunge/validate.hpp"
+#include "validate.hpp"
 #include "testutil.hpp"
 
 using namespace plunge;

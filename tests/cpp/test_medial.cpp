@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <random>
 
-#include "plunge/medial.hpp"
-#include "plunge/polygon.hpp"
+#include "medial.hpp"
+#include "polygon.hpp"
 #include "testutil.hpp"
 
 using namespace plunge;

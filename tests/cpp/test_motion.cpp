@@ -4,13 +4,13 @@
 #include <memory>
 #include <string>
 
-#include "plunge/depth.hpp"
-#include "plunge/floor.hpp"
+#include "depth.hpp"
+#include "floor.hpp"
 #include "plunge/gcode.hpp"
-#include "plunge/heightfield.hpp"
-#include "plunge/motion.hpp"
+#include "heightfield.hpp"
+#include "motion.hpp"
 #include "plunge/plan.hpp"
-#include "plunge/region.hpp"
+#include "region.hpp"
 
 #include "testutil.hpp"
 

@@ -4,7 +4,7 @@
 #include <tuple>
 
 #include "plunge/error.hpp"
-#include "plunge/packing.hpp"
+#include "packing.hpp"
 #include "testutil.hpp"
 
 using namespace plunge;

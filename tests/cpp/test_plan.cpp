@@ -4,7 +4,7 @@
 
 #include "plunge/error.hpp"
 #include "plunge/json.hpp"
-#include "plunge/limits.hpp"
+#include "limits.hpp"
 #include "plunge/plan.hpp"
 #include "testutil.hpp"
 

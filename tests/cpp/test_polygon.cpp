@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "plunge/polygon.hpp"
+#include "polygon.hpp"
 
 using namespace plunge;
 

@@ -4,7 +4,7 @@
 #include <random>
 
 #include "plunge/error.hpp"
-#include "plunge/region.hpp"
+#include "region.hpp"
 #include "testutil.hpp"
 
 using namespace plunge;

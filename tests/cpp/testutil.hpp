@@ -11,7 +11,7 @@
 #include "plunge/error.hpp"
 #include "plunge/geometry.hpp"
 #include "plunge/plan.hpp"
-#include "plunge/region.hpp"
+#include "region.hpp"
 
 namespace plunge::test {
 

@@ -12,7 +12,7 @@
 #include "plunge/error.hpp"
 #include "plunge/json.hpp"
 #include "plunge/plan.hpp"
-#include "plunge/region.hpp"
+#include "region.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -78,3 +78,16 @@ def test_the_check_sees_a_layer_above(tmp_path):
         assert [w.endswith("includes plan (layer 6)") for w in violations([str(header)], layers())] == [True]
     finally:
         CPP = saved
+
+
+def test_the_public_api_stands_alone():
+    """cpp/include/plunge/ holds what users of the library call, and nothing it
+    includes is internal: a public header includes public headers only, and
+    the front ends (CLI, Python module) use the public API alone."""
+    public = {os.path.splitext(f)[0] for f in os.listdir(os.path.join(CPP, "include", "plunge"))}
+    internal = {os.path.splitext(f)[0] for f in os.listdir(os.path.join(CPP, "src")) if f.endswith(".hpp")}
+    assert {"plan", "types", "error"} <= public and not public & internal
+    users = [os.path.join(CPP, "include", "plunge", f) for f in os.listdir(os.path.join(CPP, "include", "plunge"))]
+    users += [os.path.join(CPP, "cli", "main.cpp"), os.path.join(CPP, "python", "module.cpp")]
+    reaching = sorted((os.path.relpath(p, CPP), i) for p in users for i in includes(p) if i not in public)
+    assert not reaching, reaching

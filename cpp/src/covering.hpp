@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "plunge/geometry.hpp"
-#include "plunge/packing.hpp"
-#include "plunge/region.hpp"
+#include "packing.hpp"
+#include "region.hpp"
 
 namespace plunge {
 

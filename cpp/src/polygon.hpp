@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "plunge/geometry.hpp"
-#include "plunge/region.hpp"
+#include "region.hpp"
 
 namespace plunge::poly {
 

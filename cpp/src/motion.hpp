@@ -18,10 +18,10 @@
 #pragma once
 #include <vector>
 
-#include "plunge/depth.hpp"
-#include "plunge/heightfield.hpp"
+#include "depth.hpp"
+#include "heightfield.hpp"
 #include "plunge/progress.hpp"
-#include "plunge/region.hpp"
+#include "region.hpp"
 #include "plunge/tools.hpp"
 #include "plunge/types.hpp"
 

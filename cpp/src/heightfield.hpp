@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "plunge/depth.hpp"
+#include "depth.hpp"
 #include "plunge/geometry.hpp"
 
 namespace plunge {

@@ -15,10 +15,10 @@
 #include <limits>
 #include <vector>
 
-#include "plunge/depth.hpp"
-#include "plunge/floor.hpp"
+#include "depth.hpp"
+#include "floor.hpp"
 #include "plunge/progress.hpp"
-#include "plunge/region.hpp"
+#include "region.hpp"
 
 namespace plunge {
 

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "plunge/floor.hpp"
+#include "floor.hpp"
 #include "plunge/progress.hpp"
 #include "plunge/types.hpp"
 

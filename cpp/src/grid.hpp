@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "plunge/covering.hpp"
-#include "plunge/region.hpp"
+#include "covering.hpp"
+#include "region.hpp"
 #include "plunge/types.hpp"
 
 namespace plunge {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "plunge/geometry.hpp"
-#include "plunge/region.hpp"
+#include "region.hpp"
 #include "plunge/types.hpp"
 
 namespace plunge {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "plunge/region.hpp"
+#include "region.hpp"
 #include "plunge/types.hpp"
 
 namespace plunge {

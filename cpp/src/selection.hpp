@@ -28,9 +28,9 @@
 #include <string>
 #include <vector>
 
-#include "plunge/covering.hpp"
-#include "plunge/floor.hpp"
-#include "plunge/medial.hpp"
+#include "covering.hpp"
+#include "floor.hpp"
+#include "medial.hpp"
 #include "plunge/progress.hpp"
 #include "plunge/types.hpp"
 
