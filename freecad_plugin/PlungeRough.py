@@ -18,7 +18,7 @@ import FreeCAD
 import Part
 from PySide.QtCore import QT_TRANSLATE_NOOP
 
-from freecad_plugin import companions, compat, geometry, planner
+from freecad_plugin import companions, geometry, planner, tools
 from freecad_plugin.compat import PathFeedRate, PathJob, PathOp, PathUtils
 
 __title__ = "Plunge Rough operation"
@@ -74,27 +74,6 @@ class _PlanAgain:
             pass
 
 
-PLUNGER_SHAPES = ("endmill", "ballend", "bullnose", "plungemill")  # plungemill: plunge_mill.py
-
-
-def is_plunger(tc):
-    """A tool controller that can plunge: a flat, ball or bull-nose bit (an end
-    mill's shape) or a plunge mill (plunge_mill.py), not a drill, chamfer,
-    V-bit, probe, saw or thread mill; and a vertical feed to plunge with. The Job's default tool controller has none."""
-    bit = getattr(tc, "Tool", None)
-    if bit is None or not hasattr(bit, "Diameter"):
-        return False
-    shape = compat.bit_shape(bit) or "endmill"
-    feed = tc.VertFeed.getValueAs("mm/min").Value if hasattr(tc, "VertFeed") else 0.0
-    return shape in PLUNGER_SHAPES and feed > 0
-
-
-def job_plungers(job):
-    """The plunger tool controllers of a Job, largest first."""
-    tcs = [tc for tc in (job.Tools.Group if job is not None else []) if is_plunger(tc)]
-    return sorted(tcs, key=lambda tc: -float(tc.Tool.Diameter))
-
-
 def _add(obj, kind, name, tip, default=None, mode=None):
     if not hasattr(obj, name):
         obj.addProperty(kind, name, "Plunge Rough", QT_TRANSLATE_NOOP("App::Property", tip))
@@ -123,7 +102,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
 
     def isToolSupported(self, obj, tool):
         job = PathUtils.findParentJob(obj) or getattr(self, "job", None)
-        plungers = job_plungers(job)
+        plungers = tools.job_plungers(job)
         if getattr(self, "_creating", False):
             return bool(plungers) and plungers[0].Tool == tool
         return any(tc.Tool == tool for tc in plungers)
@@ -212,7 +191,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
     def opSetDefaultValues(self, obj, job):
         # Every plunger of the Job, largest as the operation's own; whatever
         # FreeCAD chose (the previous operation's tool controller) otherwise.
-        plungers = job_plungers(job)
+        plungers = tools.job_plungers(job)
         if plungers:
             obj.ToolController = plungers[0]
             obj.ToolControllers = plungers
@@ -309,7 +288,7 @@ def selected_faces(obj, tcs):
             faces.append(("%s.%s" % (base.Label, sub), base.Shape.getElement(sub)))
     if not faces:
         return faces
-    diameters = [float(tc.Tool.Diameter) for tc in tcs]
+    diameters = [tools.diameter(tc) for tc in tcs]
     if len(set(diameters)) != len(diameters):
         raise ValueError(translate("PlungeRough", "two plunger tool controllers have the same diameter"))
     # Each further plunger cuts through its companion operation: without it
@@ -327,7 +306,7 @@ def check_settings(obj, tcs):
     """ValueError for heights and bits the planner cannot be given."""
     depth = obj.StartDepth.Value - obj.FinalDepth.Value
     for tc in tcs:
-        length = geometry.bit_length(tc.Tool, "Length")
+        length = tools.bit_length(tc.Tool, "Length")
         if length and length < depth:
             raise ValueError("%s is %g mm long, shorter than the pocket is deep (%g mm): use a longer tool"
                              % (tc.Label, length, depth))
@@ -366,9 +345,9 @@ def build_input(obj, tcs, faces, workdir, notes=None):
         "version": 1,
         "boundary": pocket.boundary,
         "islands": pocket.islands,
-        "tools": [geometry.tool_spec(tc, obj.MaxEngagement, obj.MinEngagement) for tc in tcs],
+        "tools": [tools.spec(tc, obj.MaxEngagement, obj.MinEngagement) for tc in tcs],
         # Rapids and retracts at the first plunger's rapid rates, as the post runs them.
-        "time_model": time_model(tcs[0], getattr(obj, "ToolChangeTime", 20.0)),
+        "time_model": tools.time_model(tcs[0], getattr(obj, "ToolChangeTime", 20.0)),
         "top_z": obj.StartDepth.Value,
         "safe_z": obj.SafeHeight.Value,
         "floor": geometry.floor_spec(pocket, obj.FinalDepth.Value, workdir),
@@ -439,17 +418,6 @@ def canned_cycle_warning(obj):
     return None
 
 
-def time_model(tc, tool_change_seconds=20.0):
-    """The planner's time model from a tool controller's rapid rates (defaults
-    when unset) and the operation's tool change time."""
-    model = {"tool_change_seconds": max(0.0, float(tool_change_seconds))}
-    for key, prop in (("rapid_rate", "HorizRapid"), ("retract_rate", "VertRapid")):
-        value = getattr(tc, prop).getValueAs("mm/min").Value if hasattr(tc, prop) else 0.0
-        if value > 0:
-            model[key] = value
-    return model
-
-
 # The plan's pictures, one per question: (key in the planner's result, file, title).
 PICTURES = (("svg", "plan.svg", "The plan"),
             ("svg_stock", "plan-stock.svg", "Stock left"),
@@ -482,6 +450,11 @@ def plan_picture(obj, name="plan.svg"):
     return os.path.join(plan_folder(obj, create=False), name)
 
 
+# The tool controller questions live in tools.py; these names stay for callers
+# that ask the operation's module.
+is_plunger = tools.is_plunger
+job_plungers = tools.job_plungers
+
 # Files saved before the companions had their own module name this class as
 # freecad_plugin.PlungeRough.ObjectPlungeRoughTool; plan_of is the operation's.
 ObjectPlungeRoughTool = companions.ObjectPlungeRoughTool
@@ -506,7 +479,7 @@ def Create(name, obj=None, parentJob=None):
     """Create(name) ... a Plunge Rough operation, as FreeCAD's own operations do."""
     if obj is None:
         job = parentJob or _active_job()
-        if job is not None and not job_plungers(job):
+        if job is not None and not tools.job_plungers(job):
             raise ValueError(translate(
                 "PlungeRough", "the Job has no plunger: add a tool controller with a flat, ball or bull-nose bit and "
                 "a vertical feed (the plunge feed)"))

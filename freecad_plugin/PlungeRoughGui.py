@@ -11,7 +11,7 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
-from freecad_plugin import PlungeRough, companions
+from freecad_plugin import PlungeRough, companions, tools
 from freecad_plugin.command import ADDON, COMMAND, ICON, MENU_TEXT, TOOL_TIP
 from freecad_plugin import compat
 from freecad_plugin.compat import PathUtils, gui_modules, gui_util
@@ -176,7 +176,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
         self.form.toolControllers.blockSignals(True)
         self.form.toolControllers.clear()
         for tc in self._jobToolControllers():
-            item = QtGui.QListWidgetItem("T%d  %s  (%s)" % (tc.ToolNumber, tc.Label, tc.Tool.Diameter.UserString))
+            item = QtGui.QListWidgetItem(tools.label(tc))
             item.setToolTip(item.text())  # elided in a narrow panel
             item.setFlags(item.flags() | QtCore.Qt.ItemIsUserCheckable)
             item.setCheckState(QtCore.Qt.Checked if tc in obj.ToolControllers else QtCore.Qt.Unchecked)

@@ -16,7 +16,7 @@ import json
 import FreeCAD
 from PySide.QtCore import QT_TRANSLATE_NOOP
 
-from freecad_plugin import generator, geometry, planner
+from freecad_plugin import generator, planner, tools
 from freecad_plugin.compat import PathFeedRate, PathOp, PathUtils
 
 translate = FreeCAD.Qt.translate
@@ -28,13 +28,13 @@ def tool_controllers(obj):
     for tc in list(obj.ToolControllers) or ([obj.ToolController] if obj.ToolController else []):
         if tc is not None and tc not in tcs:
             tcs.append(tc)
-    return sorted(tcs, key=lambda tc: -float(tc.Tool.Diameter))
+    return tools.largest_first(tcs)
 
 
 def plunges_of_tool(plan, tc, start_holes=False):
     """The plan's plunges made by the tool controller's tool, in order: its start
     holes for non-centre-cutting plungers, or its own plunges."""
-    number = int(tc.ToolNumber)
+    number = tools.number(tc)
     return [p for p in plan["plunges"] if p["tool_id"] == number and bool(p.get("start_hole")) == start_holes]
 
 
@@ -86,7 +86,7 @@ def companion_label(obj, tc, start_holes=False):
     """"PlungeRough T3 12 mm": no parentheses, which the post would nest in comments."""
     if tc is None:
         return obj.Label + " plunger"
-    return "%s T%d %g mm%s" % (obj.Label, tc.ToolNumber, float(tc.Tool.Diameter),
+    return "%s T%d %g mm%s" % (obj.Label, tools.number(tc), tools.diameter(tc),
                                " start holes" if start_holes else "")
 
 
@@ -94,11 +94,11 @@ def start_hole_tcs(tcs):
     """The tool controllers that drill start holes, as the planner chooses them
     (plunge.start_hole_tools): for each plunger that does not cut at its centre,
     the smallest centre-cutting one at least as wide as its core."""
-    by_id = {int(tc.ToolNumber): tc for tc in tcs}
-    drill_of = planner.planner().start_hole_tools([geometry.tool_spec(tc) for tc in tcs])
+    by_id = tools.by_number(tcs)
+    drill_of = planner.planner().start_hole_tools([tools.spec(tc) for tc in tcs])
     drills = []
     for tc in tcs:
-        drill = by_id.get(drill_of.get(int(tc.ToolNumber)))
+        drill = by_id.get(drill_of.get(tools.number(tc)))
         if drill is not None and drill not in drills:
             drills.append(drill)
     return drills
@@ -172,20 +172,20 @@ def activate_companions(obj, plan, tcs):
     own_tc = tcs[0]
     # Automatic choice: this operation cuts with the largest plunger the plan uses.
     if obj.AutoSelectTools:
-        own_tc = next((tc for tc in tcs if int(tc.ToolNumber) in used), tcs[0])
+        own_tc = next((tc for tc in tcs if tools.number(tc) in used), tcs[0])
         if obj.ToolController != own_tc:
             obj.ToolController = own_tc
     # Start holes: every one is drilled by its companion, placed before this operation.
     drilling = {p["tool_id"] for p in plan["plunges"] if p.get("start_hole")}
-    holes_by = {int(c.ToolController.ToolNumber) for c in companions(obj) if getattr(c, "StartHoles", False)}
+    holes_by = {tools.number(c.ToolController) for c in companions(obj) if getattr(c, "StartHoles", False)}
     if drilling - holes_by:
         return None, translate("PlungeRough", "the plan drills start holes with T%s, which has no start hole "
                                "operation: tick the plungers again") % ", T".join(str(t) for t in drilling - holes_by)
     for comp in companions(obj):
         if getattr(comp, "StartHoles", False):
-            active = int(comp.ToolController.ToolNumber) in drilling
+            active = tools.number(comp.ToolController) in drilling
         else:
-            active = not obj.AutoSelectTools or (int(comp.ToolController.ToolNumber) in used
+            active = not obj.AutoSelectTools or (tools.number(comp.ToolController) in used
                                                  and comp.ToolController != own_tc)
         if comp.Active != active:
             comp.Active = active

@@ -20,8 +20,6 @@ import tempfile
 import FreeCAD
 import Part
 
-from freecad_plugin import compat
-
 
 class GeometryError(ValueError):
     """The selection cannot be planned; the message says why."""
@@ -460,64 +458,6 @@ def floor_spec(pocket, final_depth, workdir=None):
     path = os.path.join(workdir, "floor.brep")
     compound.exportBrep(path)
     return {"brep": path}
-
-def bit_length(bit, name):
-    """A length property of a tool bit in mm (None when the bit has none)."""
-    value = getattr(bit, name, None)
-    if value is None or isinstance(value, bool):
-        return None
-    return float(value.Value if hasattr(value, "Value") else value)
-
-
-def tool_spec(tc, max_engagement=100.0, min_engagement=0.0):
-    """A tool controller as a planner tool: diameter, number, shape, and what the
-    bit says of it as a plunge mill: CuttingEdgeHeight (the flute length), and
-    when present its own CoreDiameter (it does not cut at its centre; or
-    CenterCutting false), MaxEngagement and MinEngagement properties. Without
-    those, the operation's limits in % of the diameter (100 and 0: none)."""
-    bit = tc.Tool
-    diameter = float(bit.Diameter.Value if hasattr(bit.Diameter, "Value") else bit.Diameter)
-    tool = {"diameter": diameter, "id": int(tc.ToolNumber)}
-    feed = tc.VertFeed.getValueAs("mm/min").Value if hasattr(tc, "VertFeed") else 0.0
-    if feed > 0:
-        tool["feed"] = feed  # plunge feed, for the planner's time estimate
-    shape = compat.bit_shape(bit)
-    if "ball" in shape:
-        tool["shape"] = "ball"
-    elif "bull" in shape:
-        corner = None
-        # FreeCAD 1.1's bull nose has CornerRadius (its shape's own; a FlatRadius
-        # left from an older bit file is not drawn), before it FlatRadius.
-        if hasattr(bit, "CornerRadius"):
-            corner = float(bit.CornerRadius.Value)
-        elif hasattr(bit, "FlatRadius"):
-            corner = diameter / 2 - float(bit.FlatRadius.Value)
-        if corner and 0 < corner <= diameter / 2:
-            tool["shape"] = "bull"
-            tool["corner_radius"] = corner
-    flute = bit_length(bit, "CuttingEdgeHeight")
-    if flute and flute > 0:
-        tool["flute_length"] = flute
-    core = bit_length(bit, "CoreDiameter")
-    if getattr(bit, "CenterCutting", True) is False or (core and core > 0):
-        if not core or core <= 0:
-            raise ValueError("%s does not cut at its centre: give its bit a CoreDiameter" % tc.Label)
-        tool["center_cutting"] = False
-        tool["core_diameter"] = core
-    if not 0 < max_engagement <= 100 or not 0 <= min_engagement < 100:
-        raise ValueError("the engagement limits are percentages: max above 0 and up to 100, min from 0 below 100")
-    limit = bit_length(bit, "MaxEngagement")
-    if limit is None and max_engagement < 100:
-        limit = diameter * max_engagement / 100.0
-    if limit:
-        tool["max_engagement"] = limit
-    least = bit_length(bit, "MinEngagement")
-    if least is None and min_engagement > 0:
-        least = diameter * min_engagement / 100.0
-    if least:
-        tool["min_engagement"] = least
-    return tool
-
 
 def distance(a, b):
     return math.hypot(a[0] - b[0], a[1] - b[1])

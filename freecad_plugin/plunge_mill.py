@@ -4,7 +4,7 @@ file), example bits and a tool library of them.
 A plunge mill cuts with inserts on a ring at its bottom: it does not cut at its
 centre, where a core of material stays inside each hole, and one plunge may cut
 at most the inserts' width sideways. The shape carries both as parameters the
-operation reads from the bit (geometry.tool_spec): CoreDiameter and
+operation reads from the bit (tools.spec): CoreDiameter and
 MaxEngagement (and MinEngagement, 0: none), next to the usual Diameter,
 ShankDiameter, Length, CuttingEdgeHeight and Flutes (the inserts).
 

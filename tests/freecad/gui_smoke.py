@@ -676,7 +676,7 @@ def plunge_mill_bit():
     """Phase 3: the plunge-mill bit that installing the addon put in the tool
     library, added in a new Job's panel as any bit (before 1.1 its file, in
     1.1 from the library dialog), then opened in FreeCAD's tool bit editor."""
-    from freecad_plugin import PlungeRough, compat, plunge_mill
+    from freecad_plugin import PlungeRough, compat, plunge_mill, tools
     doc = FreeCAD.newDocument("PlungeMill")
     block = doc.addObject("Part::Box", "Block")
     block.Length, block.Width, block.Height = 120, 80, 40
@@ -701,7 +701,7 @@ def plunge_mill_bit():
         return
     tc = tcs[0]
     tc.VertFeed = "120 mm/min"
-    spec = PlungeRough.geometry.tool_spec(tc)
+    spec = tools.spec(tc)
     result["plunge_mill"].update({"plunger": PlungeRough.is_plunger(tc), "spec": spec,
                                   "solid": [round(v, 3) for v in (tc.Tool.Shape.BoundBox.XLength,
                                                                   tc.Tool.Shape.BoundBox.ZLength)]})

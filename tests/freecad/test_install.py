@@ -31,7 +31,7 @@ def test_installed_addon_loads_and_plans(tmp_path):
     for name in ("Init.py", "InitGui.py", "package.xml", "freecad_plugin/PlungeRough.py",
                  "freecad_plugin/companions.py", "freecad_plugin/planner.py", "resources/icons/PlungeRough.svg",
                  "resources/panels/PlungeRoughEdit.ui", "resources/tools/plungemill.svg",
-                 "freecad_plugin/plunge_mill.py"):
+                 "freecad_plugin/plunge_mill.py", "freecad_plugin/tools.py"):
         assert (installed / name).is_file(), name
     env = dict(os.environ, XDG_DATA_HOME=str(tmp_path / "data"), XDG_CONFIG_HOME=str(tmp_path / "config"))
     env.pop("PYTHONPATH", None)

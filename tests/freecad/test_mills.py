@@ -11,7 +11,7 @@ import FreeCAD
 import pytest
 
 import parts
-from freecad_plugin import PlungeRough, compat, plunge_mill
+from freecad_plugin import PlungeRough, compat, plunge_mill, tools
 from freecad_plugin.compat import post_job
 from gcode import parse_gcode, replay
 from machine_check import assert_machinable, check_program
@@ -47,7 +47,7 @@ def test_plunge_cutter_job_plans_simulates_and_posts_a_checked_program(doc):
     assert ops[1] == op and ops[0].ToolController == tcs[2]
     holes = [p for p in plan["plunges"] if p["start_hole"]]
     assert holes and all(p["tool_id"] == int(tcs[2].ToolNumber) for p in holes)
-    spec = [PlungeRough.geometry.tool_spec(tc) for tc in tcs]
+    spec = [tools.spec(tc) for tc in tcs]
     assert spec[0]["center_cutting"] is False and spec[0]["core_diameter"] == 6.0
     assert spec[0]["max_engagement"] == 8.0 and spec[0]["flute_length"] == 50.0
 
@@ -137,7 +137,7 @@ def test_a_plunge_mill_from_the_tool_library_plans_with_its_core_and_limit(doc, 
     doc.recompute()
     plan = PlungeRough.plan_of(op)
     assert plan is not None, op.Summary
-    spec = PlungeRough.geometry.tool_spec(mill)
+    spec = tools.spec(mill)
     assert spec["center_cutting"] is False and spec["core_diameter"] == 13.0 and spec["max_engagement"] == 6.0
     assert spec["flute_length"] == 80.0
     mine = [p for p in plan["plunges"] if p["tool_id"] == 5]
