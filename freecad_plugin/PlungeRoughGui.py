@@ -89,16 +89,28 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
                 (self.form.showHeights, "plan-heights.svg")]
 
     def _enablePictures(self):
-        """A picture's button is live when the last plan drew it."""
+        """A picture's button is live when the last plan drew it, or when no
+        picture is drawn yet (a plan restored with its document: the pictures
+        sit in a temporary folder, and a click draws them)."""
         if getattr(self, "obj", None) is None:  # before initPage
             return
-        for button, name in self._pictureButtons():
-            button.setEnabled(os.path.exists(PlungeRough.plan_picture(self.obj, name)))
+        drawn = [os.path.exists(PlungeRough.plan_picture(self.obj, name)) for _, name in self._pictureButtons()]
+        for (button, _), there in zip(self._pictureButtons(), drawn):
+            button.setEnabled(there or not any(drawn))
 
     def showPicture(self, name):
-        """One of the last plan's pictures in a window of its own beside the panel."""
+        """One of the last plan's pictures in a window of its own beside the
+        panel; planned again first when it is not drawn (None when the plan
+        has no such picture: stop heights over a flat floor)."""
         if self.picture is not None:
             self.picture.close()
+            self.picture = None
+        if not os.path.exists(PlungeRough.plan_picture(self.obj, name)):
+            self.obj.touch()
+            self.obj.Document.recompute()
+            self._enablePictures()
+            if not os.path.exists(PlungeRough.plan_picture(self.obj, name)):
+                return None
         self.picture = PictureDialog(PlungeRough.plan_picture(self.obj, name),
                                      dict((n, t) for _, n, t in PlungeRough.PICTURES)[name],
                                      FreeCADGui.getMainWindow())

@@ -394,6 +394,9 @@ def show_pictures(page):
         button.click()
         wait(1)
         dialog = page.picture
+        if dialog is None:  # the plan has no such picture (the button is off now)
+            shown[name] = None
+            continue
         pixmap = dialog.image.pixmap()
         shown[name] = None if pixmap is None or pixmap.isNull() else [pixmap.width(), pixmap.height()]
         screenshot("example_%s.png" % name)
@@ -428,6 +431,13 @@ def example_document():
     panel = open_panel(op)
     result["example"]["panel"] = panel is not None and panel.featurePages[-1].form.findChild(
         QtGui.QListWidget, "toolControllers") is not None
+    # As on a fresh machine: the pictures of a plan restored with its document
+    # are not drawn yet (they live in a temporary folder); the first click draws them.
+    for _, name, _ in PlungeRough.PICTURES:
+        if os.path.exists(PlungeRough.plan_picture(op, name)):
+            os.remove(PlungeRough.plan_picture(op, name))
+    if panel is not None:
+        panel.featurePages[-1]._enablePictures()
     result["example"]["pictures"] = show_pictures(panel.featurePages[-1]) if panel is not None else {}
     # No wrapper of a panel's widgets may outlive the panel: PySide hands a
     # stale wrapper to whatever is made later at the same address (another
