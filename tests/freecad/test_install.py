@@ -23,6 +23,17 @@ print("RESULT=" + json.dumps({"plugin": freecad_plugin.__file__, "plunge": plung
 """
 
 
+def check_plans(tmp_path, env):
+    """CHECK run in freecadcmd with env's profile: its result and all it printed."""
+    check = tmp_path / "check.py"  # a file: FreeCAD 1.1 ends on a -c argument of 256 characters
+    check.write_text(CHECK)
+    run = subprocess.run(["freecadcmd", str(check)], cwd=str(tmp_path), env=env, capture_output=True, text=True,
+                         timeout=300)
+    lines = [l for l in run.stdout.replace("\r", "\n").splitlines() if l.startswith("RESULT=")]
+    assert lines, run.stdout[-2000:] + run.stderr[-2000:]
+    return json.loads(lines[0][len("RESULT="):]), run.stdout + run.stderr
+
+
 def test_installed_addon_loads_and_plans(tmp_path):
     mod = tmp_path / "data" / "FreeCAD" / "Mod"
     subprocess.run(["cmake", "--install", BUILD, "--component", "freecad_addon", "--prefix", str(mod)],
@@ -35,13 +46,7 @@ def test_installed_addon_loads_and_plans(tmp_path):
         assert (installed / name).is_file(), name
     env = dict(os.environ, XDG_DATA_HOME=str(tmp_path / "data"), XDG_CONFIG_HOME=str(tmp_path / "config"))
     env.pop("PYTHONPATH", None)
-    check = tmp_path / "check.py"  # a file: FreeCAD 1.1 ends on a -c argument of 256 characters
-    check.write_text(CHECK)
-    run = subprocess.run(["freecadcmd", str(check)], cwd=str(tmp_path), env=env, capture_output=True, text=True,
-                         timeout=300)
-    lines = [l for l in run.stdout.replace("\r", "\n").splitlines() if l.startswith("RESULT=")]
-    assert lines, run.stdout[-2000:] + run.stderr[-2000:]
-    result = json.loads(lines[0][len("RESULT="):])
+    result, _ = check_plans(tmp_path, env)
     assert result["plugin"].startswith(str(installed))
     assert result["plunge"].startswith(str(installed))
     assert result["registered"]
@@ -116,15 +121,9 @@ def test_a_clone_into_mod_says_how_to_build_the_planner_and_then_plans(tmp_path)
         command = command[:-len(" --build")]
     run = subprocess.run(["sh", "-c", command], env=env, capture_output=True, text=True, timeout=3600)
     assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
-    check = tmp_path / "check.py"
-    check.write_text(CHECK)
-    out = subprocess.run(["freecadcmd", str(check)], cwd=str(tmp_path), env=env, capture_output=True, text=True,
-                         timeout=300)
-    lines = [l for l in out.stdout.replace("\r", "\n").splitlines() if l.startswith("RESULT=")]
-    assert lines, out.stdout[-2000:] + out.stderr[-2000:]
-    result = json.loads(lines[0][len("RESULT="):])
+    result, said = check_plans(tmp_path, env)
     assert result["plugin"].startswith(clone) and result["plunge"].startswith(clone)
     assert result["plunges"] > 0 and result["core_coverage"] > 0.9999
-    assert "not installed" not in out.stdout + out.stderr  # said no more
+    assert "not installed" not in said  # said no more
     bits = os.listdir(os.path.join(clone, "Tools", "Bit"))
     assert bits and all(b.endswith(".fctb") for b in bits)
