@@ -15,7 +15,7 @@ std::string planToGcode(const PlanInput& input, const Plan& plan) {
     << std::setprecision(4);
   s << "G21 G90 G17\n";
   std::map<int, double> feed;
-  for (const Tool& t : input.autoTools ? input.library : input.tools) feed[t.id] = t.feed;
+  for (const Tool& t : input.choice.automatic ? input.choice.library : input.tools) feed[t.id] = t.feed;
   int current = -1;
   for (const Plunge& p : plan.plunges) {
     if (p.toolId != current) {
@@ -37,9 +37,9 @@ std::string planToGcode(const PlanInput& input, const Plan& plan) {
     // the chips, back down to just above where it stopped.
     for (double at : p.pecks)
       s << "G1 Z" << at << " F" << feed[p.toolId] << "\nG0 Z" << p.approachZ << "\nG0 Z"
-        << std::min(p.approachZ, at + input.rapidClearance) << "\n";
+        << std::min(p.approachZ, at + input.motion.rapidClearance) << "\n";
     s << "G1 Z" << p.z << " F" << feed[p.toolId] << "\n";
-    if (!p.pecks.empty() && input.peckDwell > 0) s << "G4 P" << input.peckDwell << "\n";
+    if (!p.pecks.empty() && input.motion.peckDwell > 0) s << "G4 P" << input.motion.peckDwell << "\n";
     if (p.leadOutZ) s << "G1 Z" << *p.leadOutZ << "\n";
     if (p.leadOut) s << "G1 X" << p.leadOut->x << " Y" << p.leadOut->y << "\n";
     s << "G0 Z" << p.retractZ << "\n";

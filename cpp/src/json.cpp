@@ -155,9 +155,9 @@ void checkObject(const json& j, const char* key, const std::set<std::string>& ke
 
 void readTools(const json& j, PlanInput& in) {
   if (j.contains("tools") && j["tools"].is_string() && j["tools"].get<std::string>() == "auto") {
-    in.autoTools = true;
+    in.choice.automatic = true;
     if (!j.contains("tool_library")) throw Error("tool_library: required with \"tools\": \"auto\"");
-    in.library = toolList(j["tool_library"], "tool_library");
+    in.choice.library = toolList(j["tool_library"], "tool_library");
     return;
   }
   if (!j.contains("tools") || !j["tools"].is_array())
@@ -198,23 +198,23 @@ void readOptionObjects(const json& j, PlanInput& in) {
   if (j.contains("selection")) {
     checkObject(j, "selection", {"weight_time", "weight_tools", "rise_factor"});
     const json& o = j["selection"];
-    if (o.contains("weight_time")) in.selection.weightTime = number(o["weight_time"], "selection.weight_time");
-    if (o.contains("weight_tools")) in.selection.weightTools = number(o["weight_tools"], "selection.weight_tools");
-    if (o.contains("rise_factor")) in.selection.riseFactor = number(o["rise_factor"], "selection.rise_factor");
+    if (o.contains("weight_time")) in.choice.weights.weightTime = number(o["weight_time"], "selection.weight_time");
+    if (o.contains("weight_tools")) in.choice.weights.weightTools = number(o["weight_tools"], "selection.weight_tools");
+    if (o.contains("rise_factor")) in.choice.weights.riseFactor = number(o["rise_factor"], "selection.rise_factor");
   }
   if (j.contains("time_model")) {
     checkObject(j, "time_model", {"rapid_rate", "retract_rate", "tool_change_seconds"});
     const json& o = j["time_model"];
-    if (o.contains("rapid_rate")) in.timeModel.rapidRate = number(o["rapid_rate"], "time_model.rapid_rate");
-    if (o.contains("retract_rate")) in.timeModel.retractRate = number(o["retract_rate"], "time_model.retract_rate");
+    if (o.contains("rapid_rate")) in.motion.timeModel.rapidRate = number(o["rapid_rate"], "time_model.rapid_rate");
+    if (o.contains("retract_rate")) in.motion.timeModel.retractRate = number(o["retract_rate"], "time_model.retract_rate");
     if (o.contains("tool_change_seconds"))
-      in.timeModel.toolChangeSeconds = number(o["tool_change_seconds"], "time_model.tool_change_seconds");
+      in.motion.timeModel.toolChangeSeconds = number(o["tool_change_seconds"], "time_model.tool_change_seconds");
   }
   if (j.contains("grid")) {
     checkObject(j, "grid", {"pattern", "step"});
     const json& o = j["grid"];
-    if (o.contains("pattern")) in.gridPattern = gridPatternFromName(stringOf(o["pattern"], "grid.pattern"));
-    if (o.contains("step")) in.gridStep = number(o["step"], "grid.step");
+    if (o.contains("pattern")) in.packing.gridPattern = gridPatternFromName(stringOf(o["pattern"], "grid.pattern"));
+    if (o.contains("step")) in.packing.gridStep = number(o["step"], "grid.step");
   }
 }
 
@@ -223,37 +223,37 @@ void readScalars(const json& j, PlanInput& in) {
   const std::pair<const char*, double*> numbers[] = {
       {"top_z", &in.topZ},
       {"safe_z", &in.safeZ},
-      {"min_coverage", &in.minCoverage},
-      {"max_wall_stock", &in.maxWallStock},
-      {"max_floor_stock", &in.maxFloorStock},
-      {"lead_out", &in.leadOut},
-      {"rapid_clearance", &in.rapidClearance},
+      {"min_coverage", &in.covering.minCoverage},
+      {"max_wall_stock", &in.covering.maxWallStock},
+      {"max_floor_stock", &in.floor.maxFloorStock},
+      {"lead_out", &in.motion.leadOut},
+      {"rapid_clearance", &in.motion.rapidClearance},
       {"max_plunges", &in.maxPlunges},
-      {"contact_ratio", &in.contactRatio},
-      {"peck_dwell", &in.peckDwell}};
+      {"contact_ratio", &in.packing.contactRatio},
+      {"peck_dwell", &in.motion.peckDwell}};
   for (const auto& [key, value] : numbers)
     if (j.contains(key)) *value = number(j[key], key);
-  if (j.contains("final_depth")) in.finalDepth = number(j["final_depth"], "final_depth");
+  if (j.contains("final_depth")) in.floor.finalDepth = number(j["final_depth"], "final_depth");
   if (j.contains("peck")) {
     if (!j["peck"].is_boolean()) throw Error("peck: expected true or false");
-    in.peck = j["peck"].get<bool>();
+    in.motion.peck = j["peck"].get<bool>();
   }
   if (j.contains("stock_aware_heights")) {
     if (!j["stock_aware_heights"].is_boolean()) throw Error("stock_aware_heights: expected true or false");
-    in.stockAwareHeights = j["stock_aware_heights"].get<bool>();
+    in.motion.stockAwareHeights = j["stock_aware_heights"].get<bool>();
   }
   if (j.contains("seed")) {
     if (!j["seed"].is_number_integer() || j["seed"].get<long long>() < 0)
       throw Error("seed: expected a non-negative integer");
     in.seed = j["seed"].get<std::uint64_t>();
   }
-  if (j.contains("start")) in.start = point(j["start"], "start");
-  if (j.contains("strategy")) in.strategy = strategyFromName(stringOf(j["strategy"], "strategy"));
+  if (j.contains("start")) in.motion.start = point(j["start"], "start");
+  if (j.contains("strategy")) in.packing.strategy = strategyFromName(stringOf(j["strategy"], "strategy"));
   if (j.contains("packing_order"))
-    in.packingOrder = packingOrderFromName(stringOf(j["packing_order"], "packing_order"));
+    in.packing.order = packingOrderFromName(stringOf(j["packing_order"], "packing_order"));
   if (j.contains("growth_pattern"))
-    in.growthPattern = growthPatternFromName(stringOf(j["growth_pattern"], "growth_pattern"));
-  if (j.contains("sequencing")) in.sequencing = tourMethodFromName(stringOf(j["sequencing"], "sequencing"));
+    in.engagement.pattern = growthPatternFromName(stringOf(j["growth_pattern"], "growth_pattern"));
+  if (j.contains("sequencing")) in.motion.sequencing = tourMethodFromName(stringOf(j["sequencing"], "sequencing"));
 }
 
 }  // namespace
@@ -310,11 +310,11 @@ PlanInput planInputFromJson(const std::string& text) {
         for (size_t i = 0; i < ss[k]["islands"].size(); ++i)
           s.islands.push_back(loop(ss[k]["islands"][i], name + ".islands[" + std::to_string(i) + "]"));
       }
-      in.sections.push_back(std::move(s));
+      in.floor.sections.push_back(std::move(s));
     }
   }
   readTools(j, in);
-  in.floor = readFloor(j);
+  in.floor.surface = readFloor(j);
   readOptionObjects(j, in);
   readScalars(j, in);
   return in;

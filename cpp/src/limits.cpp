@@ -73,17 +73,17 @@ void checkScale(const PlanInput& in) {
     }
   requireLength(in.topZ, "top_z");
   requireLength(in.safeZ, "safe_z");
-  if (in.floor.kind == Floor::Kind::Flat) requireLength(in.floor.z, "floor.z");
-  if (in.finalDepth) requireLength(*in.finalDepth, "final_depth");
+  if (in.floor.surface.kind == Floor::Kind::Flat) requireLength(in.floor.surface.z, "floor.z");
+  if (in.floor.finalDepth) requireLength(*in.floor.finalDepth, "final_depth");
   requireLength(in.radialAllowance, "allowance.radial");
   requireLength(in.floorAllowance, "allowance.floor");
-  requireLength(in.maxWallStock, "max_wall_stock");
-  requireLength(in.maxFloorStock, "max_floor_stock");
-  requireLength(in.leadOut, "lead_out");
-  requireLength(in.rapidClearance, "rapid_clearance");
-  if (in.start) {
-    requireLength(in.start->x, "start.x");
-    requireLength(in.start->y, "start.y");
+  requireLength(in.covering.maxWallStock, "max_wall_stock");
+  requireLength(in.floor.maxFloorStock, "max_floor_stock");
+  requireLength(in.motion.leadOut, "lead_out");
+  requireLength(in.motion.rapidClearance, "rapid_clearance");
+  if (in.motion.start) {
+    requireLength(in.motion.start->x, "start.x");
+    requireLength(in.motion.start->y, "start.y");
   }
   for (const Tool& t : in.tools) {
     const std::string name = "tool " + std::to_string(t.id);

@@ -39,9 +39,9 @@ namespace {
 Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress& progress);
 
 std::unique_ptr<FloorSurface> makeFloor(const PlanInput& in) {
-  if (in.floor.kind == Floor::Kind::Flat) return makeFlatFloor(in.floor.z);
-  if (in.floor.kind == Floor::Kind::Expression) return makeExpressionFloor(in.floor.expression);
-  return makeBrepFloor(resolveInputPath(in, in.floor.brep));
+  if (in.floor.surface.kind == Floor::Kind::Flat) return makeFlatFloor(in.floor.surface.z);
+  if (in.floor.surface.kind == Floor::Kind::Expression) return makeExpressionFloor(in.floor.surface.expression);
+  return makeBrepFloor(resolveInputPath(in, in.floor.surface.brep));
 }
 
 // A floor or a plunger that is not flat: plunges stop at different heights.
@@ -79,10 +79,10 @@ double coreOutOfReach(const Region& region, double r, double allowance, const Po
 // Packing and covering, or the grid: the plunge positions of every tool.
 CoverResult placePlunges(const PlanInput& in, const Region& region, const std::vector<double>& radii,
                          const Polygons& core, const Progress& progress) {
-  if (in.strategy == Strategy::Grid) {
+  if (in.packing.strategy == Strategy::Grid) {
     GridOptions go;
-    go.pattern = in.gridPattern;
-    go.step = in.gridStep;
+    go.pattern = in.packing.gridPattern;
+    go.step = in.packing.gridStep;
     go.allowance = in.radialAllowance;
     go.progress = progress;
     return gridPlacements(region, radii, go);
@@ -92,17 +92,17 @@ CoverResult placePlunges(const PlanInput& in, const Region& region, const std::v
   auto packAndCover = [&](PackingOrder order) {
     PackingOptions po;
     po.allowance = in.radialAllowance;
-    po.contactRatio = in.contactRatio;
+    po.contactRatio = in.packing.contactRatio;
     po.order = order;
-    po.wallBand = in.maxWallStock;
+    po.wallBand = in.covering.maxWallStock;
     po.progress = progress;
     CoveringOptions co;
     co.allowance = in.radialAllowance;
-    co.minCoverage = in.minCoverage;
-    co.wallStock = in.maxWallStock;
+    co.minCoverage = in.covering.minCoverage;
+    co.wallStock = in.covering.maxWallStock;
     co.measureCore = false;  // measured on the final plunges (coverOf)
     co.progress = progress;
-    if (in.maxWallStock <= 0.0) return coverRegion(region, radii, packMaxHoleDegree(region, radii, po), co);
+    if (in.covering.maxWallStock <= 0.0) return coverRegion(region, radii, packMaxHoleDegree(region, radii, po), co);
     // With a wall band, only the largest tool is packed: the covering then uses a
     // smaller plunger only where the larger ones cannot reach the core. Unless
     // the largest leaves more of the core out of its reach than kGreedyDisks
@@ -122,7 +122,7 @@ CoverResult placePlunges(const PlanInput& in, const Region& region, const std::v
     }
     return coverRegion(region, radii, packed, co);
   };
-  if (in.packingOrder != PackingOrder::Auto) return packAndCover(in.packingOrder);
+  if (in.packing.order != PackingOrder::Auto) return packAndCover(in.packing.order);
   auto lattice = std::async(std::launch::async, packAndCover, PackingOrder::Lattice);
   CoverResult cover = packAndCover(PackingOrder::HoleDegree);
   CoverResult other = progress.await(lattice);
@@ -147,9 +147,9 @@ std::vector<CutDisk> depthsOf(const PlanInput& in, const CoverResult& cover, con
 // Execution order: tools largest first, each tool's plunges as a short open path
 // starting nearest to where the previous tool ended.
 void sequence(const PlanInput& in, const std::vector<CutDisk>& disks, Plan& out, const Progress& progress) {
-  Vec2 at = in.start ? *in.start : in.boundary.front();
+  Vec2 at = in.motion.start ? *in.motion.start : in.boundary.front();
   TourOptions to;
-  to.method = in.sequencing;
+  to.method = in.motion.sequencing;
   to.seed = in.seed;
   to.poll = [&progress] { progress.tick(); };
   for (size_t t = 0; t < in.tools.size(); ++t) {
@@ -177,8 +177,8 @@ void sequence(const PlanInput& in, const std::vector<CutDisk>& disks, Plan& out,
 StockGrid stockGrid(const PlanInput& in, const Region& region, const FloorSurface& floor, double regionArea,
                     double smallestRadius, const Progress& progress) {
   const double spacing = stockSpacing(regionArea, smallestRadius);
-  StockGrid grid(region, floor, in.radialAllowance, in.floorAllowance, in.maxWallStock, spacing, progress);
-  grid.bandFloorSteps(std::max(in.maxFloorStock, 0.0) + 2.0 * spacing, in.radialAllowance + in.maxWallStock);
+  StockGrid grid(region, floor, in.radialAllowance, in.floorAllowance, in.covering.maxWallStock, spacing, progress);
+  grid.bandFloorSteps(std::max(in.floor.maxFloorStock, 0.0) + 2.0 * spacing, in.radialAllowance + in.covering.maxWallStock);
   return grid;
 }
 
@@ -186,12 +186,12 @@ void restStep(const PlanInput& in, const Region& region, const FloorSurface& flo
               std::vector<CutDisk>& disks, Plan& out, const Progress& progress) {
   std::vector<Cutter> cutters;
   for (const Tool& t : in.tools) cutters.push_back(cutterOf(t));
-  if (!isSculptured(in, floor) || in.maxFloorStock <= 0.0) return;
+  if (!isSculptured(in, floor) || in.floor.maxFloorStock <= 0.0) return;
   StockGrid grid = stockGrid(in, region, floor, out.stats.regionArea, cutters.back().radius, progress);
   for (const CutDisk& d : disks) grid.cut(d, cutters[d.tool]);
   progress.stage(0.85, "rest machining in Z");
   RestOptions ro;
-  ro.maxFloorStock = in.maxFloorStock;
+  ro.maxFloorStock = in.floor.maxFloorStock;
   ro.radialAllowance = in.radialAllowance;
   ro.floorAllowance = in.floorAllowance;
   ro.topZ = in.topZ;
@@ -245,13 +245,13 @@ void reportFloorStock(const PlanInput& in, const FloorStockMeasure& m, Plan& out
   out.stats.meanFloorStock = r.meanFloorStock;
   out.stats.volumeRemoved = r.volumeRemoved;
   out.stats.volumeLeft = r.volumeLeft;
-  if (m.map && in.maxFloorStock > 0.0 && r.maxFloorStock > in.maxFloorStock + 1e-6) {
+  if (m.map && in.floor.maxFloorStock > 0.0 && r.maxFloorStock > in.floor.maxFloorStock + 1e-6) {
     std::ostringstream w;
     w << std::fixed << std::setprecision(2) << "up to " << r.maxFloorStock
-      << " mm of stock stay above the floor, more than the " << in.maxFloorStock << " mm asked for";
+      << " mm of stock stay above the floor, more than the " << in.floor.maxFloorStock << " mm asked for";
     // Plunges held at the final depth leave that stock by request, not for want of a tool.
     sayBroken(out, w.str(),
-              {"max_floor_stock", in.maxFloorStock, r.maxFloorStock, r.maxFloorStockAt, 1,
+              {"max_floor_stock", in.floor.maxFloorStock, r.maxFloorStock, r.maxFloorStockAt, 1,
                held ? "the final depth stops plunges above the floor (a lower final depth would cut it)"
                     : "no plunger of the job reaches lower there (a smaller or ball-end plunger would)"});
   }
@@ -328,7 +328,7 @@ void coverageStats(const PlanInput& in, const Region& region, const CoverResult&
   // The core beyond the wall band; without a band, the whole accessible region.
   Polygons coreLeft = cover.coreUncovered;
   out.stats.coreArea = cover.coreArea;
-  if (in.maxWallStock <= 0.0) {
+  if (in.covering.maxWallStock <= 0.0) {
     out.stats.coreArea = cover.accessibleArea;
     coreLeft = cover.uncovered;
   }
@@ -345,27 +345,27 @@ void coverageStats(const PlanInput& in, const Region& region, const CoverResult&
   std::ostringstream w;
   w << std::fixed << std::setprecision(2);
   const std::string grid = "a grid's fixed spacing cannot reach it (the packing strategy would)";
-  if (in.maxWallStock > 0.0 && poly::area(coreLeft) > 0.01) {
-    w << "the plunges leave " << poly::area(coreLeft) << " mm^2 farther than " << in.maxWallStock
+  if (in.covering.maxWallStock > 0.0 && poly::area(coreLeft) > 0.01) {
+    w << "the plunges leave " << poly::area(coreLeft) << " mm^2 farther than " << in.covering.maxWallStock
       << " mm from the walls uncut (" << 100 * out.stats.coreCoverage << " % of it cut)";
     const WallStock core = wallStockLeft(region, coreLeft, out.accessible, in.radialAllowance);
     sayBroken(out, w.str(),
-              {"max_wall_stock", in.maxWallStock, std::max(core.thickest, wall.thickest), core.at, 1,
-               in.strategy == Strategy::Grid ? grid : "slivers between the plunges that no plunge of the plan cut"});
+              {"max_wall_stock", in.covering.maxWallStock, std::max(core.thickest, wall.thickest), core.at, 1,
+               in.packing.strategy == Strategy::Grid ? grid : "slivers between the plunges that no plunge of the plan cut"});
   } else if (const WallStock corner = outOfReach(region, in, out.accessible);
-             in.maxWallStock > 0.0 && std::max(wall.thickest, corner.thickest) > in.maxWallStock + kWallStockSlack) {
+             in.covering.maxWallStock > 0.0 && std::max(wall.thickest, corner.thickest) > in.covering.maxWallStock + kWallStockSlack) {
     const WallStock& worst = corner.thickest > wall.thickest ? corner : wall;
-    w << "up to " << worst.thickest << " mm of stock stay on the walls, more than the " << in.maxWallStock
+    w << "up to " << worst.thickest << " mm of stock stay on the walls, more than the " << in.covering.maxWallStock
       << " mm asked for";
-    sayBroken(out, w.str(), {"max_wall_stock", in.maxWallStock, worst.thickest, worst.at, 1,
+    sayBroken(out, w.str(), {"max_wall_stock", in.covering.maxWallStock, worst.thickest, worst.at, 1,
                              corner.thickest > wall.thickest ? reachWhy(region, in, worst.at)
                                                              : "slivers between the plunges along the walls"});
-  } else if (in.maxWallStock <= 0.0 && out.stats.coverage < in.minCoverage - kCoverageSlack) {
+  } else if (in.covering.maxWallStock <= 0.0 && out.stats.coverage < in.covering.minCoverage - kCoverageSlack) {
     w << "the plunges clear " << 100 * out.stats.coverage << " % of the reachable floor, less than the "
-      << 100 * in.minCoverage << " % asked for";
+      << 100 * in.covering.minCoverage << " % asked for";
     sayBroken(out, w.str(),
-              {"min_coverage", in.minCoverage, out.stats.coverage, wall.at, 1,
-               in.strategy == Strategy::Grid ? grid : "material stays along the walls between the plunges"});
+              {"min_coverage", in.covering.minCoverage, out.stats.coverage, wall.at, 1,
+               in.packing.strategy == Strategy::Grid ? grid : "material stays along the walls between the plunges"});
   }
 }
 
@@ -373,9 +373,9 @@ void coverageStats(const PlanInput& in, const Region& region, const CoverResult&
 // of the section's core no plunge through that height cut, and what no
 // plunger can reach there, each said where it is thicker than the band.
 void wallBandAboveStats(const PlanInput& in, Plan& out) {
-  if (in.maxWallStock <= 0.0) return;
+  if (in.covering.maxWallStock <= 0.0) return;
   const ToolTable tools(in.tools);
-  for (const Section& s : in.sections) {
+  for (const Section& s : in.floor.sections) {
     const double stop = s.z + in.floorAllowance;
     const Region region(s.boundary, s.islands);
     std::vector<Circle> through;
@@ -385,16 +385,16 @@ void wallBandAboveStats(const PlanInput& in, Plan& out) {
       if (r > 0) through.push_back({{p.x, p.y}, r});
     }
     const Polygons accessible = accessibleRegion(region, 0.5 * in.tools.back().diameter, in.radialAllowance);
-    const Polygons left = uncoveredRegion(coreRegion(region, accessible, in.radialAllowance, in.maxWallStock), through);
+    const Polygons left = uncoveredRegion(coreRegion(region, accessible, in.radialAllowance, in.covering.maxWallStock), through);
     const WallStock uncut = wallStockLeft(region, left, {}, in.radialAllowance);
     const WallStock corner = outOfReach(region, in, accessible);
     const WallStock& worst = corner.thickest > uncut.thickest ? corner : uncut;
-    if (worst.thickest <= in.maxWallStock + kWallStockSlack) continue;
+    if (worst.thickest <= in.covering.maxWallStock + kWallStockSlack) continue;
     std::ostringstream w;
     w << std::fixed << std::setprecision(2) << "at " << s.z << " mm, above the floor, up to " << worst.thickest
-      << " mm of stock stay on the walls, more than the " << in.maxWallStock << " mm asked for";
+      << " mm of stock stay on the walls, more than the " << in.covering.maxWallStock << " mm asked for";
     sayBroken(out, w.str(),
-              {"max_wall_stock", in.maxWallStock, worst.thickest, worst.at, 1,
+              {"max_wall_stock", in.covering.maxWallStock, worst.thickest, worst.at, 1,
                &worst == &corner ? reachWhy(region, in, worst.at)
                                  : "no plunger of the job fits there down to that height"});
   }
@@ -425,13 +425,13 @@ Pocket pocketOf(PlanInput& in, Plan& out) {
                 ") with the radial allowance does not fit anywhere");
   }
   out.accessible = pocket.accessible;
-  if (in.maxWallStock <= 0.0) return pocket;
+  if (in.covering.maxWallStock <= 0.0) return pocket;
   // A band wider than half the pocket's extent leaves no core (and is no offset to compute).
-  if (in.maxWallStock < 0.5 * dist(pocket.region.minCorner(), pocket.region.maxCorner()))
-    pocket.core = coreRegion(pocket.region, pocket.accessible, in.radialAllowance, in.maxWallStock);
+  if (in.covering.maxWallStock < 0.5 * dist(pocket.region.minCorner(), pocket.region.maxCorner()))
+    pocket.core = coreRegion(pocket.region, pocket.accessible, in.radialAllowance, in.covering.maxWallStock);
   if (poly::area(pocket.core) <= 0.0) {
     std::ostringstream m;
-    m << "max_wall_stock: a band of " << in.maxWallStock
+    m << "max_wall_stock: a band of " << in.covering.maxWallStock
       << " mm along the walls is the whole pocket, nothing would be cut (use a smaller band, or 0 to cover the"
          " reachable floor)";
     throw Error(m.str());
@@ -450,9 +450,9 @@ Pocket pocketOf(PlanInput& in, Plan& out) {
 // through the higher ones too.
 void wallBandAbove(const PlanInput& in, const DepthSolver& depths, std::vector<CutDisk>& disks,
                    const Progress& progress) {
-  if (in.maxWallStock <= 0.0 || in.sections.empty()) return;
+  if (in.covering.maxWallStock <= 0.0 || in.floor.sections.empty()) return;
   std::vector<const Section*> order;
-  for (const Section& s : in.sections) order.push_back(&s);
+  for (const Section& s : in.floor.sections) order.push_back(&s);
   std::stable_sort(order.begin(), order.end(), [](const Section* a, const Section* b) { return a->z < b->z; });
   std::vector<double> radii;
   for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
@@ -469,8 +469,8 @@ void wallBandAbove(const PlanInput& in, const DepthSolver& depths, std::vector<C
     }
     CoveringOptions co;
     co.allowance = in.radialAllowance;
-    co.wallStock = in.maxWallStock;
-    co.minCoverage = in.minCoverage;
+    co.wallStock = in.covering.maxWallStock;
+    co.minCoverage = in.covering.minCoverage;
     co.measureCore = false;  // only the disks added are used
     co.progress = progress;
     const CoverResult cover = coverRegion(region, radii, through, co);
@@ -508,9 +508,9 @@ std::vector<CutDisk> placeAndDepth(const PlanInput& in, const Pocket& pocket, co
   restStep(in, pocket.region, floor, depths, disks, out, progress);
   wallBandAbove(in, depths, disks, progress);
   held = false;
-  if (in.finalDepth)
+  if (in.floor.finalDepth)
     for (CutDisk& d : disks) {
-      const double lowest = *in.finalDepth + in.floorAllowance;
+      const double lowest = *in.floor.finalDepth + in.floorAllowance;
       held = held || d.z < lowest - 1e-9;
       d.z = std::max(d.z, lowest);
     }
@@ -523,10 +523,10 @@ EngagementOptions engagementOptions(const PlanInput& in, const Progress& progres
   o.radialAllowance = in.radialAllowance;
   o.floorAllowance = in.floorAllowance;
   o.topZ = in.topZ;
-  o.maxWallStock = in.maxWallStock;
-  o.maxFloorStock = in.maxFloorStock;
-  o.start = in.start;
-  o.pattern = in.growthPattern;
+  o.maxWallStock = in.covering.maxWallStock;
+  o.maxFloorStock = in.floor.maxFloorStock;
+  o.start = in.motion.start;
+  o.pattern = in.engagement.pattern;
   o.progress = progress;
   return o;
 }
@@ -538,12 +538,12 @@ MotionOptions motionOptions(const PlanInput& in, const Progress& progress) {
   o.safeZ = in.safeZ;
   o.radialAllowance = in.radialAllowance;
   o.floorAllowance = in.floorAllowance;
-  o.leadOut = in.leadOut;
-  o.stockAwareHeights = in.stockAwareHeights;
-  o.rapidClearance = in.rapidClearance;
-  o.timeModel = in.timeModel;
-  o.peck = in.peck;
-  o.peckDwell = in.peckDwell;
+  o.leadOut = in.motion.leadOut;
+  o.stockAwareHeights = in.motion.stockAwareHeights;
+  o.rapidClearance = in.motion.rapidClearance;
+  o.timeModel = in.motion.timeModel;
+  o.peck = in.motion.peck;
+  o.peckDwell = in.motion.peckDwell;
   o.progress = progress;
   return o;
 }
@@ -591,9 +591,9 @@ Plan planChoosingTools(const PlanInput& in, const Progress& progress) {
 Plan plan(PlanInput in, const Progress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   progress.stage(0.0, "checking the pocket");
-  if (in.autoTools) in.tools = in.library;
+  if (in.choice.automatic) in.tools = in.choice.library;
   validate(in);
-  Plan out = in.autoTools ? planChoosingTools(in, progress) : planWithTools(std::move(in), progress);
+  Plan out = in.choice.automatic ? planChoosingTools(in, progress) : planWithTools(std::move(in), progress);
   out.stats.planningSeconds = secondsSince(t0);
   return out;
 }

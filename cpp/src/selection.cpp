@@ -53,9 +53,9 @@ ToolSelection describePocket(const PlanInput& in, const Region& region) {
   ToolSelection sel;
   const MedialAxis axis = medialAxis(region);
   sel.inscribed = largestInscribedCircle(axis);
-  sel.necks = findNecks(region, axis, in.selection.riseFactor);
+  sel.necks = findNecks(region, axis, in.choice.weights.riseFactor);
   sel.parts = subdivide(region, axis, sel.necks);
-  sel.order = subRegionOrder(sel.parts, in.start ? *in.start : in.boundary.front());
+  sel.order = subRegionOrder(sel.parts, in.motion.start ? *in.motion.start : in.boundary.front());
   sel.reasoning.push_back(fmt("largest inscribed circle: diameter %.2f at (%.2f, %.2f)", 2 * sel.inscribed.r,
                               sel.inscribed.c.x, sel.inscribed.c.y));
   for (size_t k = 0; k < sel.necks.size(); ++k) {
@@ -75,13 +75,13 @@ double reachTool(const PlanInput& in, const Region& region) {
   const std::vector<Tool>& library = in.tools;
   // A sculptured floor (or a ball or bull cutter) needs the small tools in Z
   // too: its hollows keep what a large one leaves above max_floor_stock.
-  const bool flat = in.floor.kind == Floor::Kind::Flat &&
+  const bool flat = in.floor.surface.kind == Floor::Kind::Flat &&
                     std::all_of(library.begin(), library.end(), [](const Tool& t) { return t.shape == CutterShape::Flat; });
   if (!flat) return library.back().diameter;
   const double rs = 0.5 * library.back().diameter;
   const Polygons reach = accessibleRegion(region, rs, in.radialAllowance);
-  const Polygons must = in.maxWallStock > 0.0 ? coreRegion(region, reach, in.radialAllowance, in.maxWallStock) : reach;
-  const double slack = in.maxWallStock > 0.0 ? 1e-6 * poly::area(must) : (1.0 - in.minCoverage) * poly::area(reach);
+  const Polygons must = in.covering.maxWallStock > 0.0 ? coreRegion(region, reach, in.radialAllowance, in.covering.maxWallStock) : reach;
+  const double slack = in.covering.maxWallStock > 0.0 ? 1e-6 * poly::area(must) : (1.0 - in.covering.minCoverage) * poly::area(reach);
   for (const Tool& t : library) {
     if (t.diameter <= library.back().diameter) break;
     if (poly::area(poly::subtract(must, accessibleRegion(region, 0.5 * t.diameter, in.radialAllowance))) <= slack)
@@ -146,7 +146,7 @@ struct Stop {
 Stop stopOf(const PlanInput& in, const FloorSurface& floor, Vec2 c, double r) {
   Stop s{floor.height(c), 0.0};
   if (floor.isFlat()) {
-    if (in.finalDepth && !std::isnan(s.z)) s.z = std::max(s.z, *in.finalDepth);
+    if (in.floor.finalDepth && !std::isnan(s.z)) s.z = std::max(s.z, *in.floor.finalDepth);
     s.z += in.floorAllowance;
     return s;
   }
@@ -160,12 +160,12 @@ Stop stopOf(const PlanInput& in, const FloorSurface& floor, Vec2 c, double r) {
   for (double v : h)
     if (!std::isnan(v) && !(v <= s.z)) s.z = v;
   if (std::isnan(s.z)) return s;
-  if (in.finalDepth) s.z = std::max(s.z, *in.finalDepth);
+  if (in.floor.finalDepth) s.z = std::max(s.z, *in.floor.finalDepth);
   int rest = 0, n = 0;
   for (double v : h)
     if (!std::isnan(v)) {
       ++n;
-      rest += s.z - v > in.maxFloorStock && in.maxFloorStock > 0.0;
+      rest += s.z - v > in.floor.maxFloorStock && in.floor.maxFloorStock > 0.0;
     }
   s.restShare = static_cast<double>(rest) / n;
   s.z += in.floorAllowance;
@@ -201,8 +201,8 @@ std::vector<double> nearestNeighbourTravel(const PlanInput& in, const std::vecto
 }  // namespace
 
 double estimateMinutes(const PlanInput& in, const std::vector<CoverDisk>& disks, const FloorSurface& floor) {
-  const TimeModel& m = in.timeModel;
-  const double c = in.stockAwareHeights ? std::max(0.0, std::min(in.rapidClearance, in.safeZ - in.topZ))
+  const TimeModel& m = in.motion.timeModel;
+  const double c = in.motion.stockAwareHeights ? std::max(0.0, std::min(in.motion.rapidClearance, in.safeZ - in.topZ))
                                         : std::max(0.0, in.safeZ - in.topZ);
   std::vector<size_t> tool;
   for (const CoverDisk& d : disks) tool.push_back(toolOfRadius(in, d.radius));
@@ -224,12 +224,12 @@ double estimateMinutes(const PlanInput& in, const std::vector<CoverDisk>& disks,
     // its stock: depth + c per level in all. Level k rapids down through the k - 1
     // cut above it and retracts from its bottom: L (depth + c) at rapid in all.
     const double levels = t.fluteLength > 0.0 ? std::ceil(depth / t.fluteLength - 1e-9) : 1.0;
-    double minutes = (depth + levels * c) / t.feed + levels * (depth + c) / m.retractRate + in.leadOut / t.feed;
+    double minutes = (depth + levels * c) / t.feed + levels * (depth + c) / m.retractRate + in.motion.leadOut / t.feed;
     // Holes into solid deeper than a peck: up out of the hole and back per peck.
     const double pd = peckDepthOf(t), level = depth / levels;
-    if (in.peck && d.stage == Stage::Packing && level > pd) {
+    if (in.motion.peck && d.stage == Stage::Packing && level > pd) {
       const double n = std::ceil(level / pd - 1e-9) - 1.0;
-      minutes += levels * ((pd * n * (n + 1) - n * in.rapidClearance) / m.retractRate + in.peckDwell / 60.0);
+      minutes += levels * ((pd * n * (n + 1) - n * in.motion.rapidClearance) / m.retractRate + in.motion.peckDwell / 60.0);
     }
     perTool[k] += minutes;
   }
@@ -238,7 +238,7 @@ double estimateMinutes(const PlanInput& in, const std::vector<CoverDisk>& disks,
   // plus the clearance, and its rapid to the next.
   if (restArea > 0.0) {
     const double r = 0.5 * smallest.diameter, n = restArea / (detail::kHexCellArea * r * r);
-    const double path = 2 * in.maxFloorStock + 2 * c;
+    const double path = 2 * in.floor.maxFloorStock + 2 * c;
     perTool.back() += n * (path / smallest.feed + path / m.retractRate + 2 * r / m.rapidRate);
     used.back() = true;
   }
@@ -263,11 +263,11 @@ class ToolSetSearch {
         others_(sel.candidates.begin(), sel.candidates.end() - 1),
         accArea_(poly::area(accessibleRegion(region, 0.5 * smallest_, in.radialAllowance))) {
     // The highest the floor (plus its allowance) can be, and the fastest feed.
-    const double zHigh = in.floor.kind == Floor::Kind::Flat ? in.floor.z + in.floorAllowance : in.topZ;
+    const double zHigh = in.floor.surface.kind == Floor::Kind::Flat ? in.floor.surface.z + in.floorAllowance : in.topZ;
     double feed = 0.0;
     for (const Tool& t : in.tools) feed = std::max(feed, t.feed);
-    const double retract = in.timeModel.retractRate;
-    if (!in.stockAwareHeights) {
+    const double retract = in.motion.timeModel.retractRate;
+    if (!in.motion.stockAwareHeights) {
       // Every plunge feeds down from safe_z and retracts back to it.
       perPlunge_ = std::max(0.0, in.safeZ - zHigh) * (1.0 / feed + 1.0 / retract);
     } else {
@@ -275,10 +275,10 @@ class ToolSetSearch {
       // and retracts at least as high (motion.hpp); it feeds from at least the
       // top of the stock under it and removes at most its disk times that, so
       // all plunges feed at least the volume over the largest disk.
-      const double c = std::max(0.0, std::min(in.safeZ - zHigh, in.rapidClearance));
+      const double c = std::max(0.0, std::min(in.safeZ - zHigh, in.motion.rapidClearance));
       perPlunge_ = c / retract;
       perPlungeFeed_ = c / feed;
-      volume_ = in.minCoverage * accArea_ * std::max(0.0, in.topZ - zHigh) / feed;
+      volume_ = in.covering.minCoverage * accArea_ * std::max(0.0, in.topZ - zHigh) / feed;
     }
   }
 
@@ -316,13 +316,13 @@ class ToolSetSearch {
   double lowerBound(const std::vector<double>& set) const { return bound(set.front(), set.size()); }
   double bound(double diameter, double nTools) const {
     const double rBig = 0.5 * diameter;
-    const TimeModel& m = in_.timeModel;
-    const double disk = kPi * rBig * rBig, plunges = in_.minCoverage * accArea_ / disk;
+    const TimeModel& m = in_.motion.timeModel;
+    const double disk = kPi * rBig * rBig, plunges = in_.covering.minCoverage * accArea_ / disk;
     const double moves = plunges * perPlunge_ + std::max(plunges * perPlungeFeed_, volume_ / disk);
     return weighted(nTools * m.toolChangeSeconds / 60.0 + moves, nTools);
   }
   double weighted(double minutes, double nTools) const {
-    return in_.selection.weightTime * minutes + in_.selection.weightTools * nTools;
+    return in_.choice.weights.weightTime * minutes + in_.choice.weights.weightTools * nTools;
   }
 
   // Pruned: this set, and with every set adding smaller candidates when inside the tree.
@@ -336,7 +336,7 @@ class ToolSetSearch {
 
   PlanInput inputOf(const std::vector<double>& diameters) const {
     PlanInput sub = in_;
-    sub.autoTools = false;
+    sub.choice.automatic = false;
     sub.tools.clear();
     for (double d : diameters) sub.tools.push_back(toolOf(d));
     return sub;
@@ -458,7 +458,7 @@ void reportSearch(const PlanInput& in, ToolSelection& sel, size_t setCount) {
       sel.reasoning.push_back("  " + setName(r.diameters) +
                               fmt(": %g positions, estimated %.1f min, weighted %.2f", r.plunges, r.minutes, r.weighted));
   sel.reasoning.push_back("chosen: " + setName(sel.chosen) +
-                          fmt(" (weights: time %g, tools %g)", in.selection.weightTime, in.selection.weightTools));
+                          fmt(" (weights: time %g, tools %g)", in.choice.weights.weightTime, in.choice.weights.weightTools));
 }
 
 }  // namespace

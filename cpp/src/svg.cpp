@@ -86,7 +86,7 @@ class SvgPicture {
     fs_ = 0.032 * size_;
     for (const ToolCount& t : plan.stats.perTool) colour_.emplace(t.toolId, static_cast<int>(colour_.size()));
     // The stock map's colour scale: yellow at the limit (1 mm when none is set).
-    stockScale_ = input.maxFloorStock > 0.0 ? input.maxFloorStock : 1.0;
+    stockScale_ = input.floor.maxFloorStock > 0.0 ? input.floor.maxFloorStock : 1.0;
     for (const Plunge& p : plan.plunges) {
       zLo_ = std::min(zLo_, p.z);
       zHi_ = std::max(zHi_, p.z);
@@ -283,7 +283,7 @@ class SvgPicture {
         swatch(lo_.x + k * fs_, y_, stockColour(0.5 * k * stockScale_, stockScale_));
         s_ << "\n";
       }
-      line(fs_ * 5.4, "floor stock, " + std::string(in_.maxFloorStock > 0.0 ? "limit " : "yellow ") +
+      line(fs_ * 5.4, "floor stock, " + std::string(in_.floor.maxFloorStock > 0.0 ? "limit " : "yellow ") +
                           number(stockScale_) + ": max " + number(plan_.stats.maxFloorStockLeft) + " mm");
     } else {
       swatch(lo_.x, y_, stockColour(0.0, 1.0));
@@ -319,7 +319,7 @@ class SvgPicture {
 }  // namespace
 
 std::vector<SvgView> svgViews(const PlanInput& input) {
-  if (input.floor.kind == Floor::Kind::Flat) return {SvgView::Plan, SvgView::Stock};
+  if (input.floor.surface.kind == Floor::Kind::Flat) return {SvgView::Plan, SvgView::Stock};
   return {SvgView::Plan, SvgView::Stock, SvgView::Heights};
 }
 

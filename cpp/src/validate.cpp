@@ -44,13 +44,13 @@ void validateMill(const Tool& t, const std::string& name) {
 
 // Each tool's numbers, then the tools sorted largest first.
 void validateTools(PlanInput& in) {
-  if (in.tools.empty()) throw Error(in.autoTools ? "tool_library: at least one tool is required"
+  if (in.tools.empty()) throw Error(in.choice.automatic ? "tool_library: at least one tool is required"
                                                  : "tools: at least one tool is required");
   std::set<int> ids;
   std::set<double> diameters;
   for (size_t i = 0; i < in.tools.size(); ++i) {
     const Tool& t = in.tools[i];
-    const std::string name = (in.autoTools ? "tool_library[" : "tools[") + std::to_string(i) + "]";
+    const std::string name = (in.choice.automatic ? "tool_library[" : "tools[") + std::to_string(i) + "]";
     requireFinite(t.diameter, name + ".diameter");
     if (t.diameter <= 0.0) throw Error(name + ".diameter must be > 0");
     requireFinite(t.feed, name + ".feed");
@@ -84,61 +84,61 @@ void validateHeights(const PlanInput& in) {
   if (in.radialAllowance < 0.0) throw Error("allowance.radial must be >= 0");
   if (in.floorAllowance < 0.0) throw Error("allowance.floor must be >= 0");
   if (in.safeZ <= in.topZ) throw Error("safe_z must be above top_z");
-  if (in.floor.kind == Floor::Kind::Flat) {
-    requireFinite(in.floor.z, "floor.z");
-    if (in.floor.z + in.floorAllowance >= in.topZ)
+  if (in.floor.surface.kind == Floor::Kind::Flat) {
+    requireFinite(in.floor.surface.z, "floor.z");
+    if (in.floor.surface.z + in.floorAllowance >= in.topZ)
       throw Error("floor.z plus the floor allowance must be below top_z");
-  } else if (in.floor.kind == Floor::Kind::Expression && in.floor.expression.empty()) {
+  } else if (in.floor.surface.kind == Floor::Kind::Expression && in.floor.surface.expression.empty()) {
     throw Error("floor.expression is empty");
-  } else if (in.floor.kind == Floor::Kind::Brep && in.floor.brep.empty()) {
+  } else if (in.floor.surface.kind == Floor::Kind::Brep && in.floor.surface.brep.empty()) {
     throw Error("floor.brep: no file name");
   }
-  for (size_t k = 0; k < in.sections.size(); ++k) {
+  for (size_t k = 0; k < in.floor.sections.size(); ++k) {
     const std::string name = "sections[" + std::to_string(k) + "]";
-    requireFinite(in.sections[k].z, name + ".z");
-    if (in.sections[k].z >= in.topZ) throw Error(name + ".z must be below top_z");
+    requireFinite(in.floor.sections[k].z, name + ".z");
+    if (in.floor.sections[k].z >= in.topZ) throw Error(name + ".z must be below top_z");
     try {
-      const Region check(in.sections[k].boundary, in.sections[k].islands);
+      const Region check(in.floor.sections[k].boundary, in.floor.sections[k].islands);
     } catch (const Error& e) {
       throw Error(name + ": " + e.what());
     }
   }
-  if (in.finalDepth) {
-    requireFinite(*in.finalDepth, "final_depth");
-    if (*in.finalDepth + in.floorAllowance >= in.topZ)
+  if (in.floor.finalDepth) {
+    requireFinite(*in.floor.finalDepth, "final_depth");
+    if (*in.floor.finalDepth + in.floorAllowance >= in.topZ)
       throw Error("final_depth plus the floor allowance must be below top_z");
   }
 }
 
 // The options of the tool choice, the time model, the grid, covering and stock.
 void validateOptions(const PlanInput& in) {
-  checkGridStep(in.gridStep);
-  for (double v : {in.timeModel.rapidRate, in.timeModel.retractRate})
+  checkGridStep(in.packing.gridStep);
+  for (double v : {in.motion.timeModel.rapidRate, in.motion.timeModel.retractRate})
     if (!std::isfinite(v) || v <= 0.0) throw Error("time_model: rapid_rate and retract_rate must be > 0");
-  if (!std::isfinite(in.timeModel.toolChangeSeconds) || in.timeModel.toolChangeSeconds < 0.0)
+  if (!std::isfinite(in.motion.timeModel.toolChangeSeconds) || in.motion.timeModel.toolChangeSeconds < 0.0)
     throw Error("time_model.tool_change_seconds must be >= 0");
-  const SelectionOptions& so = in.selection;
+  const SelectionOptions& so = in.choice.weights;
   if (!std::isfinite(so.weightTime) || !std::isfinite(so.weightTools) || so.weightTime < 0 || so.weightTools < 0 ||
       so.weightTime + so.weightTools <= 0)
     throw Error("selection: weight_time and weight_tools must be >= 0, not both 0");
   if (!std::isfinite(so.riseFactor) || so.riseFactor <= 1.0) throw Error("selection.rise_factor must be > 1");
-  requireFinite(in.minCoverage, "min_coverage");
-  if (!(in.minCoverage > 0.0 && in.minCoverage <= 1.0)) throw Error("min_coverage must be in (0, 1]");
-  requireFinite(in.contactRatio, "contact_ratio");
-  if (!(in.contactRatio >= 0.5 && in.contactRatio <= 1.0)) throw Error("contact_ratio must be in [0.5, 1]");
-  requireFinite(in.maxWallStock, "max_wall_stock");
-  if (in.maxWallStock < 0.0) throw Error("max_wall_stock must be >= 0 (0: cover down to min_coverage)");
-  requireFinite(in.maxFloorStock, "max_floor_stock");
-  if (in.maxFloorStock < 0.0) throw Error("max_floor_stock must be >= 0 (0: no rest plunges)");
-  requireFinite(in.leadOut, "lead_out");
-  if (in.leadOut < 0.0) throw Error("lead_out must be >= 0 (0: retract straight up)");
-  requireFinite(in.rapidClearance, "rapid_clearance");
-  if (in.rapidClearance <= 0.0) throw Error("rapid_clearance must be > 0");
-  requireFinite(in.peckDwell, "peck_dwell");
-  if (in.peckDwell < 0.0) throw Error("peck_dwell must be >= 0 (seconds; 0: no dwell)");
-  if (in.start) {
-    requireFinite(in.start->x, "start.x");
-    requireFinite(in.start->y, "start.y");
+  requireFinite(in.covering.minCoverage, "min_coverage");
+  if (!(in.covering.minCoverage > 0.0 && in.covering.minCoverage <= 1.0)) throw Error("min_coverage must be in (0, 1]");
+  requireFinite(in.packing.contactRatio, "contact_ratio");
+  if (!(in.packing.contactRatio >= 0.5 && in.packing.contactRatio <= 1.0)) throw Error("contact_ratio must be in [0.5, 1]");
+  requireFinite(in.covering.maxWallStock, "max_wall_stock");
+  if (in.covering.maxWallStock < 0.0) throw Error("max_wall_stock must be >= 0 (0: cover down to min_coverage)");
+  requireFinite(in.floor.maxFloorStock, "max_floor_stock");
+  if (in.floor.maxFloorStock < 0.0) throw Error("max_floor_stock must be >= 0 (0: no rest plunges)");
+  requireFinite(in.motion.leadOut, "lead_out");
+  if (in.motion.leadOut < 0.0) throw Error("lead_out must be >= 0 (0: retract straight up)");
+  requireFinite(in.motion.rapidClearance, "rapid_clearance");
+  if (in.motion.rapidClearance <= 0.0) throw Error("rapid_clearance must be > 0");
+  requireFinite(in.motion.peckDwell, "peck_dwell");
+  if (in.motion.peckDwell < 0.0) throw Error("peck_dwell must be >= 0 (seconds; 0: no dwell)");
+  if (in.motion.start) {
+    requireFinite(in.motion.start->x, "start.x");
+    requireFinite(in.motion.start->y, "start.y");
   }
   requireFinite(in.maxPlunges, "max_plunges");
 }

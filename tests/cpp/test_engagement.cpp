@@ -185,7 +185,7 @@ TEST(Engagement, AutoKeepsTheCheaperPatternPerTool) {
   };
   std::map<GrowthPattern, std::vector<Plunge>> plunges;
   for (GrowthPattern g : {GrowthPattern::Rows, GrowthPattern::Offsets, GrowthPattern::Auto}) {
-    in.growthPattern = g;
+    in.engagement.pattern = g;
     const Plan p = plan(in);
     EXPECT_EQ(p.stats.overEngaged, 0);
     EXPECT_GT(p.stats.coreCoverage, 0.9999);

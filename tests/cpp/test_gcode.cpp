@@ -61,7 +61,7 @@ static int parsesBack(const PlanInput& in, const Plan& p) {
       const Plunge& q = seen.back();
       EXPECT_NEAR(z, q.approachZ, 1e-4) << "a peck clears the hole";
       EXPECT_GT(v['Z'], q.z);
-      EXPECT_LE(v['Z'], q.z + in.rapidClearance + 1e-4);
+      EXPECT_LE(v['Z'], q.z + in.motion.rapidClearance + 1e-4);
     }
     if (feed && v.count('Z') && inHole && !seen.empty() && v['Z'] < seen.back().z) {
       seen.back().pecks.push_back(seen.back().z);  // the stop before was a peck
@@ -115,7 +115,7 @@ static int parsesBack(const PlanInput& in, const Plan& p) {
       ++raised;
       EXPECT_NEAR(*seen[i].leadOutZ, *q.leadOutZ, 1e-4);
       EXPECT_GT(*q.leadOutZ, q.z);
-      EXPECT_LE(*q.leadOutZ, q.z + in.leadOut + 1e-9);
+      EXPECT_LE(*q.leadOutZ, q.z + in.motion.leadOut + 1e-9);
     }
     // Across at the previous plunge's retract height (safe_z after a tool change).
     const bool first = i == 0 || p.plunges[i - 1].toolId != q.toolId;
@@ -125,7 +125,7 @@ static int parsesBack(const PlanInput& in, const Plan& p) {
   EXPECT_GT(leadOuts, 0);
   EXPECT_EQ(changes.size(), p.stats.perTool.size());
   if (p.stats.peckedPlunges > 0) {
-    EXPECT_DOUBLE_EQ(dwell, in.peckDwell);
+    EXPECT_DOUBLE_EQ(dwell, in.motion.peckDwell);
   }
   return raised;
 }

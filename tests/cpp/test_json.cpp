@@ -49,7 +49,7 @@ TEST(Json, ParsesTheContractExample) {
   ASSERT_EQ(in.tools.size(), 2u);
   EXPECT_EQ(in.tools[0].id, 4);
   EXPECT_EQ(in.tools[1].id, 2);  // default: rank by decreasing diameter
-  EXPECT_DOUBLE_EQ(in.floor.z, -10);
+  EXPECT_DOUBLE_EQ(in.floor.surface.z, -10);
   EXPECT_DOUBLE_EQ(in.radialAllowance, 0.2);
   EXPECT_EQ(in.seed, 3u);
 }
@@ -84,17 +84,17 @@ TEST(Json, OptionsAreParsedByName) {
   j["sequencing"] = "annealing";
   j["grid"] = {{"pattern", "square"}, {"step", 0.5}};
   const PlanInput in = planInputFromJson(j.dump());
-  EXPECT_EQ(in.strategy, Strategy::Grid);
-  EXPECT_EQ(in.packingOrder, PackingOrder::Lattice);
-  EXPECT_EQ(in.growthPattern, GrowthPattern::Offsets);
-  EXPECT_EQ(in.sequencing, TourMethod::Annealing);
-  EXPECT_EQ(in.gridPattern, GridPattern::Square);
+  EXPECT_EQ(in.packing.strategy, Strategy::Grid);
+  EXPECT_EQ(in.packing.order, PackingOrder::Lattice);
+  EXPECT_EQ(in.engagement.pattern, GrowthPattern::Offsets);
+  EXPECT_EQ(in.motion.sequencing, TourMethod::Annealing);
+  EXPECT_EQ(in.packing.gridPattern, GridPattern::Square);
   const PlanInput defaults = planInputFromJson(withChange("/strategy", json::value_t::discarded));
-  EXPECT_EQ(defaults.strategy, Strategy::Packing);
-  EXPECT_EQ(defaults.packingOrder, PackingOrder::Auto);
-  EXPECT_EQ(defaults.growthPattern, GrowthPattern::Auto);
-  EXPECT_EQ(defaults.sequencing, TourMethod::LocalSearch);
-  EXPECT_EQ(defaults.gridPattern, GridPattern::Honeycomb);
+  EXPECT_EQ(defaults.packing.strategy, Strategy::Packing);
+  EXPECT_EQ(defaults.packing.order, PackingOrder::Auto);
+  EXPECT_EQ(defaults.engagement.pattern, GrowthPattern::Auto);
+  EXPECT_EQ(defaults.motion.sequencing, TourMethod::LocalSearch);
+  EXPECT_EQ(defaults.packing.gridPattern, GridPattern::Honeycomb);
   // Unknown names: the key, the name and every accepted one.
   EXPECT_EQ(parseError(withChange("/strategy", "spiral")),
             "strategy: unknown strategy 'spiral' (use \"packing\" or \"grid\")");

@@ -120,7 +120,7 @@ TEST(Limits, BigBoundariesPlanOnSimplifiedWalls) {
   PlanInput in;
   in.boundary = freeForm(100000);
   in.tools = {{12, 1, 100}, {6, 2, 100}};
-  in.floor.z = -20;
+  in.floor.surface.z = -20;
   in.radialAllowance = 0.5;
   const Plan p = plan(in);
   EXPECT_GT(p.stats.boundaryTolerance, 0.0);

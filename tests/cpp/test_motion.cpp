@@ -40,11 +40,11 @@ TEST(Motion, HeightsAndLeadOutsKeepClearOfTheStock) {
     f.cut({q.x, q.y}, c, q.z);
     if (q.leadOut) {
       ++leads;
-      EXPECT_NEAR(dist(*q.leadOut, {q.x, q.y}), in.leadOut, 1e-9);
+      EXPECT_NEAR(dist(*q.leadOut, {q.x, q.y}), in.motion.leadOut, 1e-9);
       EXPECT_GE(region.wallDistance(*q.leadOut, 100), r + in.radialAllowance - 1e-9);
       // Into cut stock, or grazing at its flanks: no material farther than half
       // the lead-out beyond the plunge's hole (two of this raster's cells apart).
-      EXPECT_LE(f.bite({q.x, q.y}, *q.leadOut, c, q.z), 0.5 * in.leadOut + 0.2) << i;
+      EXPECT_LE(f.bite({q.x, q.y}, *q.leadOut, c, q.z), 0.5 * in.motion.leadOut + 0.2) << i;
       f.cut(*q.leadOut, c, q.z);
     }
     if (i + 1 < p.plunges.size()) {
@@ -62,8 +62,8 @@ TEST(Motion, HeightsAndLeadOutsKeepClearOfTheStock) {
 
 TEST(Motion, WithoutStockAwareHeightsEverythingAtSafeZ) {
   PlanInput in = pocket();
-  in.stockAwareHeights = false;
-  in.leadOut = 0;
+  in.motion.stockAwareHeights = false;
+  in.motion.leadOut = 0;
   const Plan p = plan(in);
   for (const Plunge& q : p.plunges) {
     EXPECT_DOUBLE_EQ(q.approachZ, in.safeZ);
@@ -177,7 +177,7 @@ TEST(Motion, ALeadOutRisesOutOfTheStepsAround) {
 // removed material) never is. Without pecking, none, and a shorter estimate.
 TEST(Motion, PecksDeepHolesIntoSolid) {
   PlanInput in = pocket();
-  in.floor.z = -60;
+  in.floor.surface.z = -60;
   in.tools = {{16, 1, 100}, {8, 2, 100}};
   in.tools[1].peckDepth = 10;
   for (bool limited : {false, true}) {
@@ -218,7 +218,7 @@ TEST(Motion, PecksDeepHolesIntoSolid) {
     EXPECT_GT(holes, 0) << limited;
     EXPECT_EQ(pecked, p.stats.peckedPlunges);
     PlanInput off = in;
-    off.peck = false;
+    off.motion.peck = false;
     const Plan none = plan(off);
     EXPECT_EQ(none.stats.peckedPlunges, 0);
     for (const Plunge& q : none.plunges) EXPECT_TRUE(q.pecks.empty());

@@ -73,7 +73,7 @@ TEST(Plan, RejectsBadNumbers) {
   in.safeZ = -1;
   EXPECT_NE(planError(in).find("safe_z"), std::string::npos);
   in = square();
-  in.floor.z = 3;
+  in.floor.surface.z = 3;
   EXPECT_NE(planError(in).find("below top_z"), std::string::npos);
   in = square();
   in.radialAllowance = -0.1;
@@ -82,13 +82,13 @@ TEST(Plan, RejectsBadNumbers) {
   in.floorAllowance = INFINITY;
   EXPECT_NE(planError(in).find("allowance.floor"), std::string::npos);
   in = square();
-  in.gridStep = 1.5;
+  in.packing.gridStep = 1.5;
   EXPECT_NE(planError(in).find("grid.step must be 0"), std::string::npos);
   in = square();
   in.tools[0].id = kMaxToolId + 1;  // io refuses it too; validate() for callers of the library
   EXPECT_NE(planError(in).find("tools[0].id must be a positive integer"), std::string::npos);
   in = square();
-  in.minCoverage = 1.5;
+  in.covering.minCoverage = 1.5;
   EXPECT_NE(planError(in).find("min_coverage"), std::string::npos);
 }
 
@@ -127,14 +127,14 @@ TEST_P(Shapes, InvariantsHold) {
   const Plan p = plan(in);
   expectNoGouge(in, p);
   EXPECT_LT(p.stats.coreArea * (1 - p.stats.coreCoverage), 0.01);
-  EXPECT_LE(p.stats.maxWallStockLeft, in.maxWallStock + 1e-9);
+  EXPECT_LE(p.stats.maxWallStockLeft, in.covering.maxWallStock + 1e-9);
   EXPECT_TRUE(p.warnings.empty());
   // The band's point: fewer plunges than the honeycomb grid of the same tools.
   PlanInput grid = in;
-  grid.strategy = Strategy::Grid;
+  grid.packing.strategy = Strategy::Grid;
   EXPECT_LT(p.stats.plungeCount, plan(grid).stats.plungeCount);
   // No band: today's covering down to min_coverage.
-  in.maxWallStock = 0.0;
+  in.covering.maxWallStock = 0.0;
   const Plan today = plan(in);
   expectNoGouge(in, today);
   EXPECT_GE(today.stats.coverage, 0.995);
@@ -148,10 +148,10 @@ TEST_P(Shapes, InvariantsHold) {
 TEST(Plan, DeepBandsPackOnce) {
   PlanInput in = square();
   in.tools = {{10, 1, 100}};
-  in.maxWallStock = 0;
+  in.covering.maxWallStock = 0;
   const int today = plan(in).stats.plungeCount;
   for (double band : {3.0, 4.0, 6.0}) {
-    in.maxWallStock = band;
+    in.covering.maxWallStock = band;
     const Plan p = plan(in);
     EXPECT_LT(p.stats.plungeCount, today) << band;
     EXPECT_LT(p.stats.coreArea * (1 - p.stats.coreCoverage), 0.01) << band;
@@ -183,16 +183,16 @@ TEST(Plan, ASmallSecondToolDoesNotTakeOver) {
 // A band as wide as the pocket leaves nothing to cut: a clear error, not an empty plan.
 TEST(Plan, BandWiderThanThePocketIsAnError) {
   PlanInput in = square();
-  in.maxWallStock = 45;  // the square is 80 mm wide
+  in.covering.maxWallStock = 45;  // the square is 80 mm wide
   EXPECT_NE(planError(in).find("max_wall_stock"), std::string::npos);
-  in.maxWallStock = 1e5;  // wider than the pocket, within the limits
+  in.covering.maxWallStock = 1e5;  // wider than the pocket, within the limits
   EXPECT_NE(planError(in).find("is the whole pocket"), std::string::npos);
-  in.maxWallStock = 1e308;  // beyond any polygon offset: a length no machine has (limits.hpp)
+  in.covering.maxWallStock = 1e308;  // beyond any polygon offset: a length no machine has (limits.hpp)
   EXPECT_NE(planError(in).find("max_wall_stock 1.000e+308 mm is beyond"), std::string::npos);
-  in.maxWallStock = -1;
+  in.covering.maxWallStock = -1;
   EXPECT_NE(planError(in).find("max_wall_stock must be >= 0"), std::string::npos);
-  in.maxWallStock = 1;
-  in.maxFloorStock = NAN;
+  in.covering.maxWallStock = 1;
+  in.floor.maxFloorStock = NAN;
   EXPECT_NE(planError(in).find("max_floor_stock"), std::string::npos);
 }
 
@@ -205,22 +205,22 @@ TEST(Plan, CoverageShortfallIsAWarning) {
   in.tools = {{16, 1}, {6, 2}};
   in.topZ = 0;
   in.safeZ = 5;
-  in.floor.z = -10;
-  in.maxWallStock = 0;  // cover down to min_coverage
+  in.floor.surface.z = -10;
+  in.covering.maxWallStock = 0;  // cover down to min_coverage
   const Plan ok = plan(in);
-  EXPECT_GE(ok.stats.coverage, in.minCoverage);
+  EXPECT_GE(ok.stats.coverage, in.covering.minCoverage);
   EXPECT_TRUE(ok.warnings.empty());
-  in.minCoverage = 1.0;  // wall cusps always remain
+  in.covering.minCoverage = 1.0;  // wall cusps always remain
   const Plan short_ = plan(in);
   ASSERT_EQ(short_.warnings.size(), 1u);
   EXPECT_NE(short_.warnings[0].find("less than the 100.00 % asked for"), std::string::npos);
   EXPECT_EQ(short_.warnings[0].find("min_coverage"), std::string::npos);  // no internal key names
   EXPECT_NE(planToJson(short_).find("\"warnings\""), std::string::npos);
   // The grid baseline short of the target warns the same way.
-  in.minCoverage = 0.996;
-  in.strategy = Strategy::Grid;
+  in.covering.minCoverage = 0.996;
+  in.packing.strategy = Strategy::Grid;
   const Plan grid = plan(in);
-  ASSERT_LT(grid.stats.coverage, in.minCoverage);
+  ASSERT_LT(grid.stats.coverage, in.covering.minCoverage);
   ASSERT_EQ(grid.warnings.size(), 1u);
   EXPECT_NE(grid.warnings[0].find("grid"), std::string::npos);
 }
@@ -228,9 +228,9 @@ TEST(Plan, CoverageShortfallIsAWarning) {
 TEST(Plan, NoPlungeStopsBelowTheFinalDepth) {
   // A floor sloping from -12 to -4 across the pocket, roughed down to -8 only.
   PlanInput in = square();
-  in.floor.kind = Floor::Kind::Expression;
-  in.floor.expression = "-12 + x / 15";
-  in.finalDepth = -8.0;
+  in.floor.surface.kind = Floor::Kind::Expression;
+  in.floor.surface.expression = "-12 + x / 15";
+  in.floor.finalDepth = -8.0;
   const Plan p = plan(in);
   ASSERT_FALSE(p.plunges.empty());
   int held = 0;
@@ -247,11 +247,11 @@ TEST(Plan, NoPlungeStopsBelowTheFinalDepth) {
   ASSERT_NE(why, p.warnings.end());
   EXPECT_NE(why->find("the final depth stops plunges"), std::string::npos) << *why;
   // Plunges over the floor above it keep their own stop heights.
-  in.finalDepth.reset();
+  in.floor.finalDepth.reset();
   const Plan free = plan(in);
   ASSERT_EQ(free.plunges.size(), p.plunges.size());
   for (size_t i = 0; i < p.plunges.size(); ++i)
     EXPECT_EQ(p.plunges[i].z, std::max(free.plunges[i].z, -8.0 + in.floorAllowance));
-  in.finalDepth = 1.0;
+  in.floor.finalDepth = 1.0;
   EXPECT_NE(planError(in).find("final_depth"), std::string::npos);
 }

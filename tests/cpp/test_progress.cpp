@@ -108,8 +108,8 @@ TEST(Progress, SubRangesMapFractions) {
 // Automatic tool choice plans several tool sets: one progress over all of them.
 TEST(Progress, ToolSelectionStaysInRange) {
   PlanInput in = shape("neck");
-  in.autoTools = true;
-  in.library = {{32, 1}, {20, 2}, {12, 3}, {6, 4}};
+  in.choice.automatic = true;
+  in.choice.library = {{32, 1}, {20, 2}, {12, 3}, {6, 4}};
   in.tools.clear();
   Seen seen;
   plan(in, recorder(seen));
@@ -123,8 +123,8 @@ TEST(Progress, ToolSelectionStaysInRange) {
 // none) stops there with Cancelled, and reports nothing after the "no".
 TEST(Progress, CancelsInEveryStage) {
   PlanInput in = shape("islands");
-  in.floor.kind = Floor::Kind::Expression;
-  in.floor.expression = "-20 + 2*sin(x/9)*cos(y/7)";
+  in.floor.surface.kind = Floor::Kind::Expression;
+  in.floor.surface.expression = "-20 + 2*sin(x/9)*cos(y/7)";
   for (Tool& t : in.tools) t.maxEngagement = 0.25 * t.diameter;
   Seen all;
   plan(in, recorder(all));

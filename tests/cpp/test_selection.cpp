@@ -15,10 +15,10 @@ namespace {
 
 PlanInput neckInput() {
   PlanInput in = planInputFromJson(test::readData("shapes/neck.json"));
-  in.autoTools = true;
-  in.library.clear();
+  in.choice.automatic = true;
+  in.choice.library.clear();
   int id = 1;
-  for (double d : {32.0, 25.0, 20.0, 12.0, 8.0, 6.0}) in.library.push_back({d, id++, 100.0 + 10 * d});
+  for (double d : {32.0, 25.0, 20.0, 12.0, 8.0, 6.0}) in.choice.library.push_back({d, id++, 100.0 + 10 * d});
   in.tools.clear();
   return in;
 }
@@ -27,7 +27,7 @@ PlanInput neckInput() {
 
 TEST(Selection, TimeModelAddsUpThePlan) {
   PlanInput in = planInputFromJson(test::readData("shapes/convex.json"));
-  in.timeModel = {8000.0, 4000.0, 30.0};
+  in.motion.timeModel = {8000.0, 4000.0, 30.0};
   const Plan p = plan(in);
   std::map<int, double> feed;
   for (const Tool& t : in.tools) feed[t.id] = t.feed;
@@ -61,9 +61,9 @@ std::map<std::vector<double>, double> plannedTruth(const PlanInput& in, const To
   std::map<std::vector<double>, double> truth;
   for (const ToolSetResult& r : sel.sets) {
     PlanInput sub = in;
-    sub.autoTools = false;
+    sub.choice.automatic = false;
     for (double d : r.diameters)
-      for (const Tool& t : in.library)
+      for (const Tool& t : in.choice.library)
         if (t.diameter == d) sub.tools.push_back(t);
     truth[r.diameters] = plan(sub).stats.estimatedMinutes;
   }
@@ -126,11 +126,11 @@ TEST(Selection, ChoosesNearTheEnumeratedOptimum) {
   // plan cuts as much of the core as the whole library's.
   EXPECT_EQ(sel.chosen.back(), sel.candidates.back());
   PlanInput all = in;
-  all.autoTools = false;
-  all.tools = in.library;
+  all.choice.automatic = false;
+  all.tools = in.choice.library;
   const Plan whole = plan(all);
   EXPECT_GE(chosen.stats.coreCoverage, whole.stats.coreCoverage - 1e-4);
-  EXPECT_LE(chosen.stats.maxWallStockLeft, in.maxWallStock + 0.01);
+  EXPECT_LE(chosen.stats.maxWallStockLeft, in.covering.maxWallStock + 0.01);
   // The library as given is among the sets.
   EXPECT_TRUE(std::any_of(sel.sets.begin(), sel.sets.end(),
                           [](const ToolSetResult& r) { return r.diameters.size() == 6; }));
@@ -142,8 +142,8 @@ TEST(Selection, ChoosesNearTheEnumeratedOptimum) {
 // default) the bound stays below every set's true time and the choice near the optimum.
 TEST(Selection, LowerBoundHoldsWithLimitsAndStockAwareHeights) {
   PlanInput in = neckInput();
-  ASSERT_TRUE(in.stockAwareHeights);
-  for (Tool& t : in.library) t.maxEngagement = 0.5 * t.diameter;
+  ASSERT_TRUE(in.motion.stockAwareHeights);
+  for (Tool& t : in.choice.library) t.maxEngagement = 0.5 * t.diameter;
   expectAGoodChoice(in, false);
 }
 
@@ -151,13 +151,13 @@ TEST(Selection, LowerBoundHoldsWithLimitsAndStockAwareHeights) {
 // the choice leaves it out, and says what that saves.
 TEST(Selection, LeavesOutAToolThatCostsMoreThanItSaves) {
   PlanInput in = planInputFromJson(test::readData("shapes/convex.json"));
-  in.library = in.tools;
-  for (Tool& t : in.library) t.feed = 1200.0;
+  in.choice.library = in.tools;
+  for (Tool& t : in.choice.library) t.feed = 1200.0;
   in.tools.clear();
-  in.autoTools = true;
+  in.choice.automatic = true;
   const Plan p = plan(in);
   ASSERT_TRUE(p.selection);
-  EXPECT_LT(p.selection->chosen.size(), in.library.size());
+  EXPECT_LT(p.selection->chosen.size(), in.choice.library.size());
   expectAGoodChoice(in, true);
   PlanInput all = planInputFromJson(test::readData("shapes/convex.json"));
   for (Tool& t : all.tools) t.feed = 1200.0;
@@ -169,8 +169,8 @@ TEST(Selection, LeavesOutAToolThatCostsMoreThanItSaves) {
 
 TEST(Selection, WeightOnToolCountPrefersFewerTools) {
   PlanInput in = neckInput();
-  in.selection.weightTime = 0.0;
-  in.selection.weightTools = 1.0;
+  in.choice.weights.weightTime = 0.0;
+  in.choice.weights.weightTools = 1.0;
   const Plan p = plan(in);
   EXPECT_EQ(p.selection->chosen.size(), 1u);  // the smallest alone reaches everything
 }
@@ -188,11 +188,11 @@ TEST(Selection, SetsThatCannotBePlannedAreSkippedWithTheirReason) {
   const PlanInput concave = planInputFromJson(test::readData("shapes/concave.json"));
   in.boundary = concave.boundary;
   in.islands = concave.islands;
-  in.library.clear();
+  in.choice.library.clear();
   Tool mill{20.0, 1, 300.0};
   mill.centerCutting = false;
   mill.coreDiameter = 8.0;
-  in.library = {mill, {10.0, 2, 200.0}, {6.0, 3, 160.0}};
+  in.choice.library = {mill, {10.0, 2, 200.0}, {6.0, 3, 160.0}};
   const Plan p = plan(in);
   ASSERT_TRUE(p.selection);
   const auto& chosen = p.selection->chosen;
@@ -214,7 +214,7 @@ TEST(Selection, SetsThatCannotBePlannedAreSkippedWithTheirReason) {
   small.diameter = 12.0;
   small.id = 2;
   small.coreDiameter = 6.0;
-  in.library = {mill, small};
+  in.choice.library = {mill, small};
   try {
     plan(in);
     FAIL() << "planned without a centre-cutting tool";
@@ -226,10 +226,10 @@ TEST(Selection, SetsThatCannotBePlannedAreSkippedWithTheirReason) {
 
 TEST(Selection, BadLibrary) {
   PlanInput in = neckInput();
-  in.library.clear();
+  in.choice.library.clear();
   EXPECT_THROW(plan(in), Error);
   in = neckInput();
-  in.library[1].diameter = -3;
+  in.choice.library[1].diameter = -3;
   try {
     plan(in);
     FAIL();

@@ -55,8 +55,8 @@ TEST(Svg, PlanViewDrawsEveryPlungeItsToursAndALegend) {
 
 TEST(Svg, StockViewShowsWhatIsLeftAndEveryBrokenLimit) {
   PlanInput in = planInputFromJson(test::smallJobJson());
-  in.minCoverage = 0.9999;  // more than the wall band lets the disks cover: said, and marked
-  in.maxWallStock = 0.0;
+  in.covering.minCoverage = 0.9999;  // more than the wall band lets the disks cover: said, and marked
+  in.covering.maxWallStock = 0.0;
   const Plan p = plan(in);
   const std::string svg = planToSvg(in, p, SvgView::Stock);
   ASSERT_FALSE(p.uncovered.empty());
@@ -75,8 +75,8 @@ TEST(Svg, StockViewShowsWhatIsLeftAndEveryBrokenLimit) {
 TEST(Svg, HeightsOnlyOverASculpturedFloorDeepestOnTop) {
   PlanInput in = planInputFromJson(test::smallJobJson());
   EXPECT_EQ(svgViews(in), (std::vector<SvgView>{SvgView::Plan, SvgView::Stock}));
-  in.floor.kind = Floor::Kind::Expression;
-  in.floor.expression = "-20 + 0.05 * x";
+  in.floor.surface.kind = Floor::Kind::Expression;
+  in.floor.surface.expression = "-20 + 0.05 * x";
   const Plan p = plan(in);
   ASSERT_EQ(svgViews(in).size(), 3u);
   const std::string svg = planToSvg(in, p, SvgView::Heights);

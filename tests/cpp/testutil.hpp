@@ -69,7 +69,7 @@ inline PlanInput rectanglePocket(double width = 120, double height = 80) {
   const Vec2 c{0.5 * width, 0.5 * height};
   in.islands = {{c + Vec2{-10, -10}, c + Vec2{10, -10}, c + Vec2{0, 10}}};
   in.tools = {{20, 1, 100}, {10, 2, 100}};
-  in.floor.z = -12;
+  in.floor.surface.z = -12;
   in.floorAllowance = 0.2;
   in.radialAllowance = 0.3;
   return in;

@@ -109,62 +109,92 @@ struct Section {
   std::vector<Loop> islands;
 };
 
-struct PlanInput {
-  Loop boundary;
-  std::vector<Loop> islands;
-  std::vector<Tool> tools;  // sorted by decreasing diameter once validated
-  double topZ = 0.0;
-  double safeZ = 5.0;
-  Floor floor;
-  double radialAllowance = 0.0;
-  double floorAllowance = 0.0;
+// The input's options, one group per stage (docs/plan-format.md names each
+// key). PlanInput holds them whole; a stage reads its own group and the job.
+
+// Where plunges go: "strategy", "packing_order", "contact_ratio", "grid".
+struct PackingSettings {
   Strategy strategy = Strategy::Packing;
-  std::uint64_t seed = 0;
-  // Extensions beyond the contract (all optional in JSON):
-  double minCoverage = 0.996;  // "min_coverage": stop covering wall material here
-  double contactRatio = 0.86;  // "contact_ratio": packing tangency radius / tool radius
-  // "packing_order": "hole_degree" (the thesis), "lattice", or "auto": both, keep the better plan.
-  PackingOrder packingOrder = PackingOrder::Auto;
-  // "growth_pattern": "rows", "offsets" or "auto": both, per tool the better.
-  GrowthPattern growthPattern = GrowthPattern::Auto;
-  std::optional<Vec2> start;   // "start": where the machine starts (default: first boundary point)
-  TourMethod sequencing = TourMethod::LocalSearch;  // "sequencing": or "annealing" (the thesis)
-  // Where a relative floor.brep path starts: the input file's folder when read
-  // from a file (readPlanInput), otherwise (empty) the current directory.
-  std::string baseDir;
-  // "tools": "auto": the plungers are chosen from `library` ("tool_library").
-  bool autoTools = false;
-  std::vector<Tool> library;
-  SelectionOptions selection;  // "selection": {"weight_time", "weight_tools", "rise_factor"}
-  TimeModel timeModel;         // "time_model": {"rapid_rate", "retract_rate", "tool_change_seconds"}
-  // "strategy": "grid" with "grid": {"pattern": "honeycomb" | "square", "step": fraction of the diameter}.
+  // "hole_degree" (the thesis), "lattice", or "auto": both, keep the better plan.
+  PackingOrder order = PackingOrder::Auto;
+  double contactRatio = 0.86;  // packing tangency radius / tool radius
+  // "grid": {"pattern": "honeycomb" | "square", "step": fraction of the diameter}.
   GridPattern gridPattern = GridPattern::Honeycomb;
   double gridStep = 0.0;
-  // Stock left for the finisher (stock.hpp): "max_wall_stock", mm beyond the
-  // radial allowance: every point farther from the walls is cut (0: cover down
-  // to min_coverage instead). "max_floor_stock", mm above floor + floor
-  // allowance: plunges are added where a sculptured floor keeps more (0: none added).
+};
+
+// What must be cut (stock.hpp): "max_wall_stock", mm beyond the radial
+// allowance: every point farther from the walls is cut (0: cover down to
+// "min_coverage" instead).
+struct CoveringSettings {
   double maxWallStock = 1.0;
-  double maxFloorStock = 1.0;
-  // Motion of a real machine (motion.hpp). "lead_out": horizontal move toward
-  // cleared space before each retract, mm (0: none). "stock_aware_heights":
-  // rapid down to "rapid_clearance" above the stock still there and retract
-  // only as high as the next move needs; false: every move at safe_z.
+  double minCoverage = 0.996;
+};
+
+// "growth_pattern": what a limited tool grows along, "rows", "offsets" or
+// "auto": both, per tool the better (engagement.hpp).
+struct EngagementSettings {
+  GrowthPattern pattern = GrowthPattern::Auto;
+};
+
+// The machine's moves (motion.hpp, sequencing.hpp). "lead_out": horizontal
+// move toward cleared space before each retract, mm (0: none).
+// "stock_aware_heights": rapid down to "rapid_clearance" above the stock
+// still there and retract only as high as the next move needs; false: every
+// move at safe_z. "peck": holes into solid deeper than their tool's peck
+// depth are pecked; "peck_dwell": seconds at the bottom of each.
+struct MotionSettings {
   double leadOut = 0.5;
   bool stockAwareHeights = true;
   double rapidClearance = 1.0;
-  // "max_plunges": refuse inputs estimated to need more (limits.hpp).
-  double maxPlunges = 200000;
-  // "final_depth": no plunge stops below final_depth + the floor allowance
-  // (FreeCAD: the operation's final depth; absent: the floor alone decides).
-  std::optional<double> finalDepth;
-  // "peck": holes drilled into solid deeper than their tool's peck depth are
-  // pecked (motion.hpp); "peck_dwell": seconds at the bottom of each of them.
   bool peck = true;
   double peckDwell = 0.0;
-  // "sections": the pocket wider above its floor; at each the wall band is
-  // kept too, by plunges stopping at that height.
+  TourMethod sequencing = TourMethod::LocalSearch;  // "sequencing": or "annealing" (the thesis)
+  std::optional<Vec2> start;  // "start": where the machine starts (default: first boundary point)
+  TimeModel timeModel;        // "time_model": {"rapid_rate", "retract_rate", "tool_change_seconds"}
+};
+
+// The floor and what stays on it (floor.hpp, stock.hpp). "max_floor_stock",
+// mm above floor + floor allowance: plunges are added where a sculptured
+// floor keeps more (0: none added). "final_depth": no plunge stops below it
+// + the floor allowance (FreeCAD: the operation's final depth; absent: the
+// floor alone decides). "sections": the pocket wider above its floor; at each
+// the wall band is kept too, by plunges stopping at that height.
+struct FloorSettings {
+  Floor surface;
+  double maxFloorStock = 1.0;
+  std::optional<double> finalDepth;
   std::vector<Section> sections;
+};
+
+// "tools": "auto": the plungers are chosen from "tool_library" (selection.hpp).
+struct ToolChoice {
+  bool automatic = false;
+  std::vector<Tool> library;
+  SelectionOptions weights;  // "selection": {"weight_time", "weight_tools", "rise_factor"}
+};
+
+struct PlanInput {
+  // The job every stage reads: the pocket, its heights and allowances.
+  Loop boundary;
+  std::vector<Loop> islands;
+  double topZ = 0.0;
+  double safeZ = 5.0;
+  double radialAllowance = 0.0;
+  double floorAllowance = 0.0;
+  std::uint64_t seed = 0;
+  double maxPlunges = 200000;  // "max_plunges": refuse inputs estimated to need more (limits.hpp)
+  // Where a relative floor.brep path starts: the input file's folder when read
+  // from a file (readPlanInput), otherwise (empty) the current directory.
+  std::string baseDir;
+  std::vector<Tool> tools;  // sorted by decreasing diameter once validated
+  // Each stage's own options.
+  ToolChoice choice;
+  PackingSettings packing;
+  CoveringSettings covering;
+  EngagementSettings engagement;
+  FloorSettings floor;
+  MotionSettings motion;
 };
 
 // --- the plan --------------------------------------------------------------------
