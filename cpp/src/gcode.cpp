@@ -1,8 +1,9 @@
 #include "plunge/gcode.hpp"
 
+#include "plunge/tools.hpp"
+
 #include <algorithm>
 #include <iomanip>
-#include <map>
 #include <sstream>
 
 namespace plunge {
@@ -14,8 +15,9 @@ std::string planToGcode(const PlanInput& input, const Plan& plan) {
     << 100.0 * plan.stats.coverage << " %)\n"
     << std::setprecision(4);
   s << "G21 G90 G17\n";
-  std::map<int, double> feed;
-  for (const Tool& t : input.choice.automatic ? input.choice.library : input.tools) feed[t.id] = t.feed;
+  // A plunge's tool by its id, as everywhere: one the input lacks is the
+  // planner's fault (InternalError), never a feed of 0.
+  const ToolTable tools(input.choice.automatic ? input.choice.library : input.tools);
   int current = -1;
   for (const Plunge& p : plan.plunges) {
     if (p.toolId != current) {
@@ -36,9 +38,9 @@ std::string planToGcode(const PlanInput& input, const Plan& plan) {
     // A deep hole into solid is pecked: up out of it after each peck to clear
     // the chips, back down to just above where it stopped.
     for (double at : p.pecks)
-      s << "G1 Z" << at << " F" << feed[p.toolId] << "\nG0 Z" << p.approachZ << "\nG0 Z"
+      s << "G1 Z" << at << " F" << tools.byId(p.toolId).feed << "\nG0 Z" << p.approachZ << "\nG0 Z"
         << std::min(p.approachZ, at + input.motion.rapidClearance) << "\n";
-    s << "G1 Z" << p.z << " F" << feed[p.toolId] << "\n";
+    s << "G1 Z" << p.z << " F" << tools.byId(p.toolId).feed << "\n";
     if (!p.pecks.empty() && input.motion.peckDwell > 0) s << "G4 P" << input.motion.peckDwell << "\n";
     if (p.leadOutZ) s << "G1 Z" << *p.leadOutZ << "\n";
     if (p.leadOut) s << "G1 X" << p.leadOut->x << " Y" << p.leadOut->y << "\n";

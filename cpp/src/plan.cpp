@@ -136,34 +136,38 @@ std::vector<CutDisk> depthsOf(const PlanInput& in, const CoverResult& cover, con
   std::vector<CutDisk> out;
   for (const CoverDisk& d : cover.disks) {
     progress.tick(0.75 + 0.1 * static_cast<double>(out.size()) / cover.disks.size());
-    const double z = depths.plungeHeight(d.center, cutterOf(in.tools[d.tool]), in.floorAllowance, in.radialAllowance);
+    // The packing and covering answer with an index into the radii they were
+    // given (the tools in order); from here on a plunge knows its tool by id.
+    const Tool& tool = in.tools[d.tool];
+    const double z = depths.plungeHeight(d.center, cutterOf(tool), in.floorAllowance, in.radialAllowance);
     if (z >= in.topZ)
       throw Error("the floor rises to top_z or above under the plunge at " + detail::formatPoint(d.center));
-    out.push_back({d.center, d.tool, z});
+    out.push_back({d.center, tool.id, z});
   }
   return out;
 }
 
 // Execution order: tools largest first, each tool's plunges as a short open path
 // starting nearest to where the previous tool ended.
-void sequence(const PlanInput& in, const std::vector<CutDisk>& disks, Plan& out, const Progress& progress) {
+void sequence(const PlanInput& in, const ToolTable& tools, const std::vector<CutDisk>& disks, Plan& out,
+              const Progress& progress) {
   Vec2 at = in.motion.start ? *in.motion.start : in.boundary.front();
   TourOptions to;
   to.method = in.motion.sequencing;
   to.seed = in.seed;
   to.poll = [&progress] { progress.tick(); };
-  for (size_t t = 0; t < in.tools.size(); ++t) {
+  for (const Tool& tool : tools.all()) {
     std::vector<const CutDisk*> mine;
     std::vector<Vec2> pts;
     for (const CutDisk& d : disks)
-      if (d.tool == static_cast<int>(t)) {
+      if (d.toolId == tool.id) {
         mine.push_back(&d);
         pts.push_back(d.center);
       }
     if (pts.empty()) continue;
     for (int i : tour(pts, false, at, to)) {
       const Vec2 p = pts[i];
-      out.plunges.push_back(plungeOf(in.tools[t], p, mine[i]->z));
+      out.plunges.push_back(plungeOf(tool, p, mine[i]->z));
       out.plunges.back().rest = mine[i]->rest;
       at = p;
     }
@@ -182,13 +186,11 @@ StockGrid stockGrid(const PlanInput& in, const Region& region, const FloorSurfac
   return grid;
 }
 
-void restStep(const PlanInput& in, const Region& region, const FloorSurface& floor, const DepthSolver& depths,
-              std::vector<CutDisk>& disks, Plan& out, const Progress& progress) {
-  std::vector<Cutter> cutters;
-  for (const Tool& t : in.tools) cutters.push_back(cutterOf(t));
+void restStep(const PlanInput& in, const ToolTable& tools, const Region& region, const FloorSurface& floor,
+              const DepthSolver& depths, std::vector<CutDisk>& disks, Plan& out, const Progress& progress) {
   if (!isSculptured(in, floor) || in.floor.maxFloorStock <= 0.0) return;
-  StockGrid grid = stockGrid(in, region, floor, out.stats.regionArea, cutters.back().radius, progress);
-  for (const CutDisk& d : disks) grid.cut(d, cutters[d.tool]);
+  StockGrid grid = stockGrid(in, region, floor, out.stats.regionArea, 0.5 * tools.all().back().diameter, progress);
+  for (const CutDisk& d : disks) grid.cut(d, cutterOf(tools.byId(d.toolId)));
   progress.stage(0.85, "rest machining in Z");
   RestOptions ro;
   ro.maxFloorStock = in.floor.maxFloorStock;
@@ -196,7 +198,7 @@ void restStep(const PlanInput& in, const Region& region, const FloorSurface& flo
   ro.floorAllowance = in.floorAllowance;
   ro.topZ = in.topZ;
   ro.progress = progress;
-  const RestResult rest = restInZ(region, depths, cutters, grid, ro);
+  const RestResult rest = restInZ(region, depths, tools, grid, ro);
   disks.insert(disks.end(), rest.added.begin(), rest.added.end());
 }
 
@@ -207,16 +209,11 @@ struct FloorStockMeasure {
   std::optional<StockMap> map;  // sculptured floors only
 };
 
-FloorStockMeasure measureFloorStock(const PlanInput& in, const Region& region, const FloorSurface& floor,
-                                    const std::vector<Plunge>& plunges, double regionArea, const Progress& progress) {
-  std::vector<Cutter> cutters;
-  for (const Tool& t : in.tools) cutters.push_back(cutterOf(t));
-  StockGrid grid = stockGrid(in, region, floor, regionArea, cutters.back().radius, progress);
-  const ToolTable tools(in.tools);
-  for (const Plunge& p : plunges) {
-    const int t = static_cast<int>(tools.indexOf(p.toolId));
-    grid.cut({{p.x, p.y}, t, p.z}, cutters[t]);
-  }
+FloorStockMeasure measureFloorStock(const PlanInput& in, const ToolTable& tools, const Region& region,
+                                    const FloorSurface& floor, const std::vector<Plunge>& plunges, double regionArea,
+                                    const Progress& progress) {
+  StockGrid grid = stockGrid(in, region, floor, regionArea, 0.5 * tools.all().back().diameter, progress);
+  for (const Plunge& p : plunges) grid.cut({{p.x, p.y}, p.toolId, p.z}, cutterOf(tools.byId(p.toolId)));
   FloorStockMeasure out;
   out.report = measureStock(grid, in.topZ);
   if (!isSculptured(in, floor)) return out;
@@ -372,9 +369,8 @@ void coverageStats(const PlanInput& in, const Region& region, const CoverResult&
 // The wall band at each section's height, measured on the final plunges: what
 // of the section's core no plunge through that height cut, and what no
 // plunger can reach there, each said where it is thicker than the band.
-void wallBandAboveStats(const PlanInput& in, Plan& out) {
+void wallBandAboveStats(const PlanInput& in, const ToolTable& tools, Plan& out) {
   if (in.covering.maxWallStock <= 0.0) return;
-  const ToolTable tools(in.tools);
   for (const Section& s : in.floor.sections) {
     const double stop = s.z + in.floorAllowance;
     const Region region(s.boundary, s.islands);
@@ -448,8 +444,8 @@ Pocket pocketOf(PlanInput& in, Plan& out) {
 // section holds the disk and the allowance, and the walls do not overhang, so
 // nothing of the part is nearer below. Lowest section first: its plunges cut
 // through the higher ones too.
-void wallBandAbove(const PlanInput& in, const DepthSolver& depths, std::vector<CutDisk>& disks,
-                   const Progress& progress) {
+void wallBandAbove(const PlanInput& in, const ToolTable& tools, const DepthSolver& depths,
+                   std::vector<CutDisk>& disks, const Progress& progress) {
   if (in.covering.maxWallStock <= 0.0 || in.floor.sections.empty()) return;
   std::vector<const Section*> order;
   for (const Section& s : in.floor.sections) order.push_back(&s);
@@ -464,8 +460,9 @@ void wallBandAbove(const PlanInput& in, const DepthSolver& depths, std::vector<C
     std::vector<PackedDisk> through;  // what the plunges so far cut at this height
     for (const CutDisk& d : disks) {
       if (d.z > stop + 1e-9) continue;
-      const double r = radiusCutAt(cutterOf(in.tools[d.tool]), d.z, stop);
-      if (r > 0) through.push_back({d.center, r, r, d.tool});
+      const double r = radiusCutAt(cutterOf(tools.byId(d.toolId)), d.z, stop);
+      // The covering's disks know their tool by its place in `radii`.
+      if (r > 0) through.push_back({d.center, r, r, static_cast<int>(tools.indexOf(d.toolId))});
     }
     CoveringOptions co;
     co.allowance = in.radialAllowance;
@@ -478,14 +475,14 @@ void wallBandAbove(const PlanInput& in, const DepthSolver& depths, std::vector<C
       const CoverDisk& n = cover.disks[k];
       double z = stop;
       try {  // over the floor, no lower than the floor allows
-        z = std::max(z, depths.plungeHeight(n.center, cutterOf(in.tools[n.tool]), in.floorAllowance,
+        z = std::max(z, depths.plungeHeight(n.center, cutterOf(tools.all()[n.tool]), in.floorAllowance,
                                             in.radialAllowance));
       } catch (const Cancelled&) {
         throw;
       } catch (const Error&) {
         // no floor under it: the section's height holds it
       }
-      if (z < in.topZ) disks.push_back({n.center, n.tool, z});
+      if (z < in.topZ) disks.push_back({n.center, tools.all()[n.tool].id, z});
     }
   }
 }
@@ -494,9 +491,10 @@ void wallBandAbove(const PlanInput& in, const DepthSolver& depths, std::vector<C
 // the depth of each (4.4), the rest step in Z, then no plunge below final_depth
 // (held: whether that raised any plunge above the floor).
 // (placed: the positions when the tool choice has placed them already.)
-std::vector<CutDisk> placeAndDepth(const PlanInput& in, const Pocket& pocket, const FloorSurface& floor,
-                                   const DepthSolver& depths, std::optional<CoverResult> placed, Plan& out,
-                                   bool& held, const Progress& progress) {
+std::vector<CutDisk> placeAndDepth(const PlanInput& in, const ToolTable& tools, const Pocket& pocket,
+                                   const FloorSurface& floor, const DepthSolver& depths,
+                                   std::optional<CoverResult> placed, Plan& out, bool& held,
+                                   const Progress& progress) {
   std::vector<double> radii;
   for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
   progress.stage(0.05, "packing and covering");
@@ -505,8 +503,8 @@ std::vector<CutDisk> placeAndDepth(const PlanInput& in, const Pocket& pocket, co
   out.stats.regionArea = poly::area(allowedRegion(pocket.region, in.radialAllowance));
   progress.stage(0.75, "plunge depths");
   std::vector<CutDisk> disks = depthsOf(in, cover, depths, progress);
-  restStep(in, pocket.region, floor, depths, disks, out, progress);
-  wallBandAbove(in, depths, disks, progress);
+  restStep(in, tools, pocket.region, floor, depths, disks, out, progress);
+  wallBandAbove(in, tools, depths, disks, progress);
   held = false;
   if (in.floor.finalDepth)
     for (CutDisk& d : disks) {
@@ -517,9 +515,9 @@ std::vector<CutDisk> placeAndDepth(const PlanInput& in, const Pocket& pocket, co
   return disks;
 }
 
-EngagementOptions engagementOptions(const PlanInput& in, const Progress& progress) {
+EngagementOptions engagementOptions(const PlanInput& in, const ToolTable& tools, const Progress& progress) {
   EngagementOptions o;
-  o.tools = ToolTable(in.tools);
+  o.tools = tools;
   o.radialAllowance = in.radialAllowance;
   o.floorAllowance = in.floorAllowance;
   o.topZ = in.topZ;
@@ -531,9 +529,9 @@ EngagementOptions engagementOptions(const PlanInput& in, const Progress& progres
   return o;
 }
 
-MotionOptions motionOptions(const PlanInput& in, const Progress& progress) {
+MotionOptions motionOptions(const PlanInput& in, const ToolTable& tools, const Progress& progress) {
   MotionOptions o;
-  o.tools = ToolTable(in.tools);
+  o.tools = tools;
   o.topZ = in.topZ;
   o.safeZ = in.safeZ;
   o.radialAllowance = in.radialAllowance;
@@ -606,6 +604,9 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   const auto t0 = std::chrono::steady_clock::now();
   Plan out;
   const Pocket pocket = pocketOf(in, out);
+  // The job's tools, once (pocketOf leaves out those that fit nowhere): every
+  // stage from here on knows a tool by its id.
+  const ToolTable tools(in.tools);
   // The floor: flat, an expression or BREP faces (read before the long part).
   const std::unique_ptr<FloorSurface> floor = makeFloor(in);
   const Vec2 lo = pocket.region.minCorner(), hi = pocket.region.maxCorner();
@@ -613,10 +614,10 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   const DepthSolver depths(*floor, lo, hi, std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)),
                            progress);
   bool held = false;
-  const std::vector<CutDisk> disks = placeAndDepth(in, pocket, *floor, depths, std::move(placed), out, held, progress);
+  const std::vector<CutDisk> disks = placeAndDepth(in, tools, pocket, *floor, depths, std::move(placed), out, held, progress);
 
   progress.stage(0.9, "ordering the plunges");
-  sequence(in, disks, out, progress);
+  sequence(in, tools, disks, out, progress);
   // Real plunge mills: engagement limits and cores (positions and order grown
   // together), flute length (levels), then heights and lead-outs.
   const bool limited = std::any_of(in.tools.begin(), in.tools.end(),
@@ -624,9 +625,9 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   if (limited) {
     progress.stage(0.92, "growing the cut within the engagement limits");
     HeightField stock = stockOf(in.tools, in.topZ, pocket.region);
-    out.plunges = growWithinLimits(pocket.region, depths, out.plunges, stock, engagementOptions(in, progress));
+    out.plunges = growWithinLimits(pocket.region, depths, out.plunges, stock, engagementOptions(in, tools, progress));
   }
-  MotionOptions motion = motionOptions(in, progress);
+  MotionOptions motion = motionOptions(in, tools, progress);
   out.plunges = splitIntoLevels(out.plunges, motion, out.stats);
   // Measured on the final plunges (the rest step and the limits add to the
   // covering's), on another thread with its own floor while the motion is
@@ -638,7 +639,7 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   };
   auto measuring = std::async(std::launch::async, [&, plunges = out.plunges, own = floor->clone()] {
     return Measures{coverOf(plunges, out.accessible, pocket.core),
-                    measureFloorStock(in, pocket.region, *own, plunges, out.stats.regionArea, progress)};
+                    measureFloorStock(in, tools, pocket.region, *own, plunges, out.stats.regionArea, progress)};
   });
   progress.stage(0.95, "heights and lead-outs");
   motion.progress = progress.sub(0.95, 0.98);
@@ -652,7 +653,7 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   out.warnings.resize(warned);
   out.broken.resize(broken);
   coverageStats(in, pocket.region, measured.cover, out);
-  wallBandAboveStats(in, out);
+  wallBandAboveStats(in, tools, out);
   out.warnings.insert(out.warnings.end(), motionWarnings.begin(), motionWarnings.end());
   out.broken.insert(out.broken.end(), motionBroken.begin(), motionBroken.end());
   reportFloorStock(in, measured.stock, out, held);

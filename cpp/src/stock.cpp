@@ -133,9 +133,10 @@ namespace {
 // all); cut, and the samples it fixed struck off.
 class RestStep {
  public:
-  RestStep(const Region& region, const DepthSolver& depths, const std::vector<Cutter>& cutters, StockGrid& grid,
+  RestStep(const Region& region, const DepthSolver& depths, const ToolTable& tools, StockGrid& grid,
            const RestOptions& opt)
-      : region_(region), depths_(depths), cutters_(cutters), grid_(grid), opt_(opt), h_(grid.neighbourhood()) {
+      : region_(region), depths_(depths), tools_(tools), grid_(grid), opt_(opt), h_(grid.neighbourhood()) {
+    for (const Tool& t : tools.all()) cutters_.push_back(cutterOf(t));
     // Every point lies within a neighbourhood (0.75 of a sample step) of a sample,
     // and a sample only counts as cut by a plunge that cuts all of its neighbourhood
     // (StockGrid::safeStock); what stays between samples is then the floor's slope
@@ -188,7 +189,7 @@ class RestStep {
 
   // A plunge fixes a sample when it cuts the sample's whole neighbourhood low enough.
   bool fixes(const CutDisk& d, size_t k) const {
-    const Cutter& c = cutters_[d.tool];
+    const Cutter& c = cutter(d);
     const double rho = dist(grid_.at(k), d.center) + h_;
     return rho <= c.radius && d.z + cutterProfile(c, rho) <= grid_.floorAt(k) + target_;
   }
@@ -230,7 +231,7 @@ class RestStep {
 
   // Over-limit samples a plunge fixes.
   int score(const CutDisk& d) const {
-    const Cutter& c = cutters_[d.tool];
+    const Cutter& c = cutter(d);
     int s = 0;
     // fixes(d, q), with the distance the disk's walk gives.
     grid_.forEachInDisk(d.center, c.radius - h_, [&](size_t q, double rho) {
@@ -269,7 +270,7 @@ class RestStep {
         // others are not worth a stop height.
         if (dist(c, p) + h_ > r || !region_.diskFits(c, clearance)) continue;
         if (!mayFix(c, t, k)) continue;
-        CutDisk low{c, static_cast<int>(t), lowestStop(c, t) - kBoundSlack};
+        CutDisk low{c, tools_.all()[t].id, lowestStop(c, t) - kBoundSlack};
         if (low.z >= opt_.topZ || !fixes(low, k)) continue;
         candidates.push_back({low, score(low), candidates.size()});
       }
@@ -291,7 +292,7 @@ class RestStep {
       if (bestScore > 0 && cand.bound == bestScore && cand.order > bestOrder) continue;
       CutDisk d = cand.disk;
       try {
-        d.z = depths_.plungeHeight(d.center, cutters_[d.tool], opt_.floorAllowance, opt_.radialAllowance);
+        d.z = depths_.plungeHeight(d.center, cutter(d), opt_.floorAllowance, opt_.radialAllowance);
       } catch (const Error&) {
         continue;  // no floor under part of the disk
       }
@@ -310,8 +311,8 @@ class RestStep {
 
   // Cuts the plunge into the grid and strikes off the samples it brought under the limit.
   void cut(const CutDisk& d) {
-    grid_.cut(d, cutters_[d.tool]);
-    const double r = cutters_[d.tool].radius;
+    grid_.cut(d, cutter(d));
+    const double r = cutter(d).radius;
     grid_.forEachIn(d.center - Vec2{r, r}, d.center + Vec2{r, r}, [&](size_t q) {
       if (isOver_[q] && grid_.safeStock(q) <= target_) isOver_[q] = 0;
     });
@@ -319,7 +320,10 @@ class RestStep {
 
   const Region& region_;
   const DepthSolver& depths_;
-  const std::vector<Cutter>& cutters_;
+  const Cutter& cutter(const CutDisk& d) const { return cutters_[tools_.indexOf(d.toolId)]; }
+
+  const ToolTable& tools_;
+  std::vector<Cutter> cutters_;  // in the table's order
   StockGrid& grid_;
   const RestOptions& opt_;
   const double h_;
@@ -330,10 +334,10 @@ class RestStep {
 
 }  // namespace
 
-RestResult restInZ(const Region& region, const DepthSolver& depths, const std::vector<Cutter>& cutters,
-                   StockGrid& grid, const RestOptions& opt) {
-  if (cutters.empty()) return {};
-  return RestStep(region, depths, cutters, grid, opt).run();
+RestResult restInZ(const Region& region, const DepthSolver& depths, const ToolTable& tools, StockGrid& grid,
+                   const RestOptions& opt) {
+  if (tools.all().empty()) return {};
+  return RestStep(region, depths, tools, grid, opt).run();
 }
 
 StockReport measureStock(const StockGrid& grid, double topZ) {

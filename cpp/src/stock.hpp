@@ -19,13 +19,14 @@
 #include "floor.hpp"
 #include "plunge/progress.hpp"
 #include "region.hpp"
+#include "plunge/tools.hpp"
 
 namespace plunge {
 
 // One plunge as the stock sees it: where, which cutter, and its tip height.
 struct CutDisk {
   Vec2 center;
-  int tool = 0;  // index into the cutters
+  int toolId = 0;
   double z = 0.0;
   bool rest = false;  // added by the rest step in Z (restInZ)
 };
@@ -130,7 +131,7 @@ struct RestResult {
 // Adds plunges until no cut sample's floor stock exceeds the limit (less a
 // margin for what lies between samples), or no plunge of any tool helps.
 // `grid` must already hold the plan's cuts; it is updated with the added ones.
-RestResult restInZ(const Region& region, const DepthSolver& depths, const std::vector<Cutter>& cutters,
+RestResult restInZ(const Region& region, const DepthSolver& depths, const ToolTable& tools,
                    StockGrid& grid, const RestOptions& options);
 
 struct StockReport {

@@ -1,6 +1,8 @@
 // The plan as RS-274 G-code (gcode.hpp), parsed back.
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <map>
 #include <sstream>
 #include <string>
@@ -159,4 +161,24 @@ TEST(Gcode, PecksDeepHolesAsPlanned) {
   const Plan p = plan(in);
   EXPECT_GT(p.stats.peckedPlunges, 0);
   parsesBack(in, p);
+}
+
+// Each plunge's feed is its tool's, found by the tool id as in every layer: a
+// plunge of a tool the input lacks is the planner's fault, never a feed of 0.
+TEST(Gcode, FeedsByToolIdAndRefusesAnUnknownOne) {
+  PlanInput in = planInputFromJson(test::smallJobJson());
+  in.tools[0].feed = 321;  // each tool its own feed
+  in.tools[1].feed = 123;
+  Plan p = plan(in);
+  ASSERT_FALSE(p.plunges.empty());
+  const std::string g = planToGcode(in, p);
+  for (const Tool& t : in.tools) {
+    const bool used = std::any_of(p.plunges.begin(), p.plunges.end(), [&](const Plunge& q) { return q.toolId == t.id; });
+    std::ostringstream f;
+    f << " F" << std::fixed << std::setprecision(4) << t.feed << "\n";
+    EXPECT_EQ(used, g.find(f.str()) != std::string::npos) << t.id;
+  }
+  EXPECT_EQ(g.find(" F200.0000"), std::string::npos);  // no default feed
+  p.plunges.back().toolId = 999;
+  EXPECT_THROW(planToGcode(in, p), InternalError);
 }
