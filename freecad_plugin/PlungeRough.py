@@ -260,7 +260,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
             FreeCAD.addDocumentObserver(_PlanAgain(obj))
             return
         write_pictures(workdir, plan)
-        obj.PlanData = json.dumps({"input": data, "plan": plan})
+        companions.hold_plan_data(obj, {"input": data, "plan": plan})
         report_plan(obj, plan, notes)
         own_tc, problem = companions.activate_companions(obj, plan, tcs)
         if own_tc is None:

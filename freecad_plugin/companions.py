@@ -41,7 +41,7 @@ def plunges_of_tool(plan, tc, start_holes=False):
 def toolCommands(op, plunges):
     """One tool's plunges as Path commands, with the main operation's heights,
     cycle and pecks (the tool's peck depth and the clearance as planned)."""
-    data = json.loads(op.PlanData) if op.PlanData else {"input": {}, "plan": {"stats": {"per_tool": []}}}
+    data = plan_data(op) or {"input": {}, "plan": {"stats": {"per_tool": []}}}
     ids = {p["tool_id"] for p in plunges}
     peck = max([t.get("peck_depth", 0.0) for t in data["plan"]["stats"]["per_tool"] if t["tool_id"] in ids] or [0.0])
     return generator.generate(plunges, op.ClearanceHeight.Value, op.SafeHeight.Value, op.UseCannedCycle, peck,
@@ -72,9 +72,34 @@ class ObjectPlungeRoughTool(PathOp.ObjectOp):
         PathFeedRate.setFeedRate(self.commandlist, obj.ToolController)
 
 
+def plan_data(obj):
+    """The last plan of a Plunge Rough operation and its input, {"input", "plan"}
+    (docs/plan-format.md), or None. The objects the planner handed over in
+    this session (hold_plan_data); PlanData, the document's copy, is parsed
+    only once after the document was opened."""
+    text = obj.PlanData
+    if not text:
+        return None
+    proxy = getattr(obj, "Proxy", None)
+    held = getattr(proxy, "_plan_data", None)
+    if held is None or held[0] != text:
+        held = (text, json.loads(text))
+        if proxy is not None:
+            proxy._plan_data = held
+    return held[1]
+
+
+def hold_plan_data(obj, data):
+    """Stores a new plan and its input in the document (PlanData, JSON: what a
+    saved file keeps) and holds the objects themselves for plan_data."""
+    obj.PlanData = text = json.dumps(data)
+    obj.Proxy._plan_data = (text, data)
+
+
 def plan_of(obj):
     """The last plan of a Plunge Rough operation (docs/plan-format.md, "Output"), or None."""
-    return json.loads(obj.PlanData)["plan"] if obj.PlanData else None
+    data = plan_data(obj)
+    return data["plan"] if data else None
 
 
 def companions(obj):

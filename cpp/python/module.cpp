@@ -87,18 +87,21 @@ plunge::Progress progressOf(const py::object& callback) {
   });
 }
 
+// The input's values go in and the plan's come out as Python objects: no
+// JSON text on either side.
 py::object planDict(const py::dict& input, bool svg, const py::object& progress) {
-  const std::string text = toJson(input, "input").dump();
+  const json value = toJson(input, "input");
   if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
     throw plunge::Error("progress: expected a callable (fraction, stage) or None");
   const plunge::Progress reporter = progressOf(progress);
-  std::string out, summary;
+  json out;
+  std::string summary;
   std::vector<std::pair<std::string, std::string>> pictures;  // (key, SVG)
   {
     py::gil_scoped_release release;
-    const plunge::PlanInput in = plunge::planInputFromJson(text);
+    const plunge::PlanInput in = plunge::planInputFromValue(value);
     const plunge::Plan plan = plunge::plan(in, reporter);
-    out = plunge::planToJson(plan);
+    out = plunge::planToValue(plan);
     summary = plunge::planSummary(plan);
     if (svg)
       for (plunge::SvgView view : plunge::svgViews(in))
@@ -106,7 +109,7 @@ py::object planDict(const py::dict& input, bool svg, const py::object& progress)
                                                             : std::string("svg_") + plunge::svgViewName(view),
                               plunge::planToSvg(in, plan, view));
   }
-  py::object result = fromJson(json::parse(out));
+  py::object result = fromJson(out);
   result["summary"] = py::str(summary);
   for (const auto& [key, picture] : pictures) result[py::str(key)] = py::str(picture);
   return result;

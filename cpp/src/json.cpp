@@ -90,7 +90,8 @@ GridPattern gridPatternFromName(const std::string& name) {
 
 namespace {
 
-std::vector<Tool> toolList(const json& ts, const std::string& what) {
+// notes: what was read in an old spelling and migrated, said in the plan.
+std::vector<Tool> toolList(const json& ts, const std::string& what, std::vector<std::string>& notes) {
   if (!ts.is_array()) throw Error(what + ": expected a list of {\"diameter\": ...}");
   std::vector<Tool> tools;
   for (size_t i = 0; i < ts.size(); ++i) {
@@ -120,10 +121,17 @@ std::vector<Tool> toolList(const json& ts, const std::string& what) {
       else throw Error(name + ".shape: expected \"flat\", \"ball\" or \"bull\"");
     }
     if (ts[i].contains("corner_radius")) t.cornerRadius = number(ts[i]["corner_radius"], name + ".corner_radius");
-    // A real plunge mill (absent: no limit). A given limit must be a positive length.
+    // A real plunge mill. No limit is an absent key; 0 and null, its old
+    // spellings, are read as absent and said. A limit given is a positive length.
     auto limit = [&](const char* key, double& v) {
       if (!ts[i].contains(key)) return;
-      v = number(ts[i][key], name + "." + key);
+      const json& given = ts[i][key];
+      if (given.is_null() || (given.is_number() && given.get<double>() == 0.0)) {
+        notes.push_back(name + "." + key + ": " + (given.is_null() ? "null" : "0") +
+                        " is read as no limit (leave the key out to say so)");
+        return;
+      }
+      v = number(given, name + "." + key);
       if (!(v > 0.0)) throw Error(name + "." + key + " must be > 0 (leave it out for no limit)");
     };
     limit("max_engagement", t.maxEngagement);
@@ -157,13 +165,13 @@ void readTools(const json& j, PlanInput& in) {
   if (j.contains("tools") && j["tools"].is_string() && j["tools"].get<std::string>() == "auto") {
     in.choice.automatic = true;
     if (!j.contains("tool_library")) throw Error("tool_library: required with \"tools\": \"auto\"");
-    in.choice.library = toolList(j["tool_library"], "tool_library");
+    in.choice.library = toolList(j["tool_library"], "tool_library", in.notes);
     return;
   }
   if (!j.contains("tools") || !j["tools"].is_array())
     throw Error("tools: expected a list of {\"diameter\": ...} or \"auto\" with a tool_library");
   if (j.contains("tool_library")) throw Error("tool_library: only with \"tools\": \"auto\"");
-  in.tools = toolList(j["tools"], "tools");
+  in.tools = toolList(j["tools"], "tools", in.notes);
 }
 
 Floor readFloor(const json& j) {
@@ -272,10 +280,14 @@ json parsed(const std::string& text, const std::string& what) {
 
 }  // namespace
 
-std::vector<Tool> toolsFromJson(const std::string& text) { return toolList(parsed(text, "tools: "), "tools"); }
+std::vector<Tool> toolsFromJson(const std::string& text) {
+  std::vector<std::string> notes;
+  return toolList(parsed(text, "tools: "), "tools", notes);
+}
 
-PlanInput planInputFromJson(const std::string& text) {
-  const json j = parsed(text, "");
+PlanInput planInputFromJson(const std::string& text) { return planInputFromValue(parsed(text, "")); }
+
+PlanInput planInputFromValue(const json& j) {
   if (!j.is_object()) throw Error("input: expected a JSON object");
   onlyKeys(j,
            {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",
@@ -333,7 +345,9 @@ PlanInput readPlanInput(const std::string& path) {
   return in;
 }
 
-std::string planToJson(const Plan& plan) {
+std::string planToJson(const Plan& plan) { return planToValue(plan).dump(1) + "\n"; }
+
+json planToValue(const Plan& plan) {
   json out;
   out["plunges"] = json::array();
   for (const Plunge& p : plan.plunges) {
@@ -428,7 +442,7 @@ std::string planToJson(const Plan& plan) {
                              {"chosen", sel.chosen},
                              {"reasoning", sel.reasoning}};
   }
-  return out.dump(1) + "\n";
+  return out;
 }
 
 }  // namespace plunge

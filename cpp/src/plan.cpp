@@ -591,7 +591,9 @@ Plan plan(PlanInput in, const Progress& progress) {
   progress.stage(0.0, "checking the pocket");
   if (in.choice.automatic) in.tools = in.choice.library;
   validate(in);
+  const std::vector<std::string> notes = in.notes;
   Plan out = in.choice.automatic ? planChoosingTools(in, progress) : planWithTools(std::move(in), progress);
+  out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
   out.stats.planningSeconds = secondsSince(t0);
   return out;
 }

@@ -152,3 +152,26 @@ TEST(Json, JsonOutputFollowsTheContract) {
     EXPECT_TRUE(out["stats"].contains(k)) << k;
   EXPECT_EQ(out["stats"]["plunge_count"].get<int>(), static_cast<int>(p.plunges.size()));
 }
+
+// No limit is an absent key. Its old spellings, 0 and null, plan as if the
+// key were absent and are said first among the plan's warnings.
+TEST(Json, OldNoLimitSpellingsAreMigratedAndSaid) {
+  nlohmann::json j = nlohmann::json::parse(test::smallJobJson());
+  const Plan absent = plan(planInputFromValue(j));
+  j["tools"][0]["max_engagement"] = 0;
+  j["tools"][1]["flute_length"] = nullptr;
+  const PlanInput in = planInputFromValue(j);
+  ASSERT_EQ(in.notes.size(), 2u);
+  const Plan migrated = plan(in);
+  ASSERT_EQ(migrated.plunges.size(), absent.plunges.size());
+  for (size_t i = 0; i < absent.plunges.size(); ++i) {
+    EXPECT_EQ(migrated.plunges[i].x, absent.plunges[i].x);
+    EXPECT_EQ(migrated.plunges[i].y, absent.plunges[i].y);
+    EXPECT_EQ(migrated.plunges[i].z, absent.plunges[i].z);
+  }
+  ASSERT_GE(migrated.warnings.size(), 2u);
+  EXPECT_EQ(migrated.warnings[0], "tools[0].max_engagement: 0 is read as no limit (leave the key out to say so)");
+  EXPECT_EQ(migrated.warnings[1], "tools[1].flute_length: null is read as no limit (leave the key out to say so)");
+  j["tools"][0]["max_engagement"] = -1;
+  EXPECT_NE(parseError(j.dump()).find("max_engagement must be > 0"), std::string::npos);
+}

@@ -55,3 +55,14 @@ def test_the_readme_is_a_front_page():
     linked = {os.path.normpath(t.partition("#")[0]) for t in LINK.findall(text)}
     missing = [f for f in os.listdir(DOCS) if f.endswith(".md") and os.path.join("docs", f) not in linked]
     assert not missing, missing
+
+
+def test_every_doc_picture_is_made_again_by_the_gui_test():
+    """docs/images/ holds only what tests/freecad/refresh_doc_images.sh copies
+    from the GUI test's artifacts, each once: no picture there goes stale
+    without a way to make it again."""
+    script = open(os.path.join(ROOT, "tests", "freecad", "refresh_doc_images.sh")).read()
+    table = script.split("<<'MAP'\n", 1)[1].split("\nMAP\n", 1)[0]
+    names = [line.split()[0] for line in table.splitlines() if line.strip()]
+    assert len(names) == len(set(names)), names
+    assert sorted(names) == sorted(os.listdir(os.path.join(ROOT, "docs", "images")))

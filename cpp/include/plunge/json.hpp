@@ -1,6 +1,7 @@
-// The plan's input and output as JSON text (docs/plan-format.md, the schemas in
+// The plan's input and output as JSON text or values (docs/plan-format.md, the schemas in
 // docs/).
 #pragma once
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -26,5 +27,10 @@ GridPattern gridPatternFromName(const std::string& name);    // "grid": {"patter
 
 // The plan: plunges, statistics, warnings, the tool choice (docs/plan-schema.json).
 std::string planToJson(const Plan& plan);
+
+// The same as JSON values, for a front end that holds its data as values
+// already (the Python module): no text in between.
+PlanInput planInputFromValue(const nlohmann::json& value);
+nlohmann::json planToValue(const Plan& plan);
 
 }  // namespace plunge

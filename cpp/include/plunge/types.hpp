@@ -187,6 +187,8 @@ struct PlanInput {
   // Where a relative floor.brep path starts: the input file's folder when read
   // from a file (readPlanInput), otherwise (empty) the current directory.
   std::string baseDir;
+  // What reading the input migrated from an old spelling: the plan's first warnings.
+  std::vector<std::string> notes;
   std::vector<Tool> tools;  // sorted by decreasing diameter once validated
   // Each stage's own options.
   ToolChoice choice;
