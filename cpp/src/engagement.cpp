@@ -605,7 +605,7 @@ class Grower {
     // follows the scallops they leave.
     const double depthIn = r - kRingBand * e;
     const double step = std::clamp(kRingChord * std::sqrt(std::max(0.0, r * r - depthIn * depthIn)),
-                                   std::max(tool.minEngagement, 2 * h), r);
+                                   std::max(tool.minEngagement.value_or(0.0), 2 * h), r);
     const int minGain = std::max(kMinGainCells, static_cast<int>(kMinGainShare * kPi * r * r / (h * h)));
     std::vector<bool> triedStart(planned.size(), false);
     Vec2 at = order_.empty() ? (in_.start ? *in_.start : region_.loops()[0].front())
@@ -630,7 +630,7 @@ class Grower {
         if (!stock_.contact(c, cutter, *z, coreR).coreClear) continue;
         const double engaged = cuts_.engagement(c, cutter, *z, e + kExactSlack);
         if (engaged > e + kExactSlack) continue;
-        if (engaged < tool.minEngagement) {
+        if (engaged < tool.minEngagement.value_or(0.0)) {
           thin.push_back({c, *z});
           continue;
         }
@@ -707,7 +707,7 @@ class Grower {
     // that far from a point it stands for), so steps keep that much inside.
     const double coreMargin = 0.75 * h;
     const double step = std::max(std::min(e - 0.25 * h, coreR > 0 ? r - coreR - coreMargin - 0.05 * h : e),
-                                 std::max(tool.minEngagement, 2 * h));
+                                 std::max(tool.minEngagement.value_or(0.0), 2 * h));
     // Along the walls, plunges close enough that their scallops keep the wall
     // stock limit (with a margin for the raster).
     double wallStep = step;
@@ -773,7 +773,7 @@ class Grower {
       if (p.skip) return Verdict::Skip;
       if (p.solid) return Verdict::Solid;  // a drill into solid: a start, whatever the limit
       if (!p.coreClear || p.engagement > e + kExactSlack) return Verdict::Blocked;
-      return p.engagement < tool.minEngagement ? Verdict::Thin : Verdict::Ok;
+      return p.engagement < tool.minEngagement.value_or(0.0) ? Verdict::Thin : Verdict::Ok;
     };
     auto cut = [&](size_t k, bool start) {
       pos[k].open = false;

@@ -121,9 +121,15 @@ std::vector<Tool> toolList(const json& ts, const std::string& what, std::vector<
       else throw Error(name + ".shape: expected \"flat\", \"ball\" or \"bull\"");
     }
     if (ts[i].contains("corner_radius")) t.cornerRadius = number(ts[i]["corner_radius"], name + ".corner_radius");
-    // A real plunge mill. No limit is an absent key; 0 and null, its old
-    // spellings, are read as absent and said. A limit given is a positive length.
-    auto limit = [&](const char* key, double& v) {
+    // A real plunge mill. A length given must be positive.
+    auto length = [&](const char* key) {
+      const double v = number(ts[i][key], name + "." + key);
+      if (!(v > 0.0)) throw Error(name + "." + key + " must be > 0 (leave it out for no limit)");
+      return v;
+    };
+    // No limit is an absent key; 0 and null, its old spellings, are read as
+    // absent and said.
+    auto limit = [&](const char* key, std::optional<double>& v) {
       if (!ts[i].contains(key)) return;
       const json& given = ts[i][key];
       if (given.is_null() || (given.is_number() && given.get<double>() == 0.0)) {
@@ -131,14 +137,13 @@ std::vector<Tool> toolList(const json& ts, const std::string& what, std::vector<
                         " is read as no limit (leave the key out to say so)");
         return;
       }
-      v = number(given, name + "." + key);
-      if (!(v > 0.0)) throw Error(name + "." + key + " must be > 0 (leave it out for no limit)");
+      v = length(key);
     };
     limit("max_engagement", t.maxEngagement);
     limit("min_engagement", t.minEngagement);
     limit("flute_length", t.fluteLength);
-    limit("core_diameter", t.coreDiameter);
-    limit("peck_depth", t.peckDepth);
+    if (ts[i].contains("core_diameter")) t.coreDiameter = length("core_diameter");
+    if (ts[i].contains("peck_depth")) t.peckDepth = length("peck_depth");
     if (ts[i].contains("center_cutting")) {
       if (!ts[i]["center_cutting"].is_boolean()) throw Error(name + ".center_cutting: expected true or false");
       t.centerCutting = ts[i]["center_cutting"].get<bool>();

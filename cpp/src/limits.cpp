@@ -90,7 +90,8 @@ void checkScale(const PlanInput& in) {
     if (t.diameter > kMaxToolDiameter)
       throw Error(name + ": a diameter of " + mm(t.diameter) + " mm is larger than any milling tool (" +
                   mm(kMaxToolDiameter) + " mm at most): is it in mm?");
-    for (double v : {t.maxEngagement, t.minEngagement, t.coreDiameter, t.fluteLength, t.cornerRadius})
+    for (double v : {t.maxEngagement.value_or(0.0), t.minEngagement.value_or(0.0), t.coreDiameter,
+                     t.fluteLength.value_or(0.0), t.cornerRadius})
       requireLength(v, name + ": a length of");
   }
   if (!(in.maxPlunges >= 1.0)) throw Error("max_plunges must be at least 1");

@@ -219,8 +219,7 @@ HeightField stockOf(const std::vector<Tool>& tools, double topZ, const Region& r
   double rMin = 0.5 * tools.back().diameter, limit = rMin;
   for (const Tool& t : tools) {
     rMin = std::min(rMin, 0.5 * t.diameter);
-    if (t.minEngagement > 0) limit = std::min(limit, t.minEngagement);
-    if (t.maxEngagement > 0) limit = std::min(limit, t.maxEngagement);
+    limit = std::min({limit, t.minEngagement.value_or(limit), t.maxEngagement.value_or(limit)});
   }
   const double rMax = 0.5 * tools.front().diameter;
   const Vec2 lo = region.minCorner() - Vec2{rMax, rMax}, hi = region.maxCorner() + Vec2{rMax, rMax};
@@ -236,11 +235,11 @@ std::vector<Plunge> splitIntoLevels(const std::vector<Plunge>& ordered, const Mo
     const Cutter cutter = cutterOf(t);
     std::vector<double> top;
     int levels = 1;
-    const double step = t.fluteLength - cornerHeight(t);
+    const double step = t.fluteLength.value_or(0.0) - cornerHeight(t);
     for (size_t k = i; k < j; ++k) {
       const Vec2 c{ordered[k].x, ordered[k].y};
       top.push_back(touched.highestAlong(c, c, cutter.radius));
-      if (t.fluteLength > 0.0)
+      if (t.fluteLength)
         levels = std::max(levels, static_cast<int>(std::ceil((top.back() - ordered[k].z) / step - 1e-9)));
     }
     stats.levels = std::max(stats.levels, levels);
@@ -470,13 +469,13 @@ void planMotion(const Region& region, const DepthSolver& depths, Plan& plan, con
     // cut at its centre) onto its start hole. A start the growth had to make
     // beside cut material (its fallback) is measured as any plunge.
     const bool drills = p.start && (k.solid || !t.centerCutting);
-    if (!drills && t.maxEngagement > 0 && p.engagement > t.maxEngagement + kEngagementTolerance)
-      over.add(p, p.engagement, t.maxEngagement, p.engagement - t.maxEngagement);
-    if (!p.start && t.minEngagement > 0 && k.materialCells > 0 && p.engagement < t.minEngagement - tol)
-      thin.add(p, p.engagement, t.minEngagement, t.minEngagement - p.engagement);
+    if (!drills && t.maxEngagement && p.engagement > *t.maxEngagement + kEngagementTolerance)
+      over.add(p, p.engagement, *t.maxEngagement, p.engagement - *t.maxEngagement);
+    if (!p.start && t.minEngagement && k.materialCells > 0 && p.engagement < *t.minEngagement - tol)
+      thin.add(p, p.engagement, *t.minEngagement, *t.minEngagement - p.engagement);
     if (!t.centerCutting && !k.coreClear) core.add(p, k.deepest, t.coreDiameter, k.deepest);
-    if (t.fluteLength > 0 && k.deepest + cornerHeight(t) > t.fluteLength + 1e-6)
-      deep.add(p, k.deepest + cornerHeight(t), t.fluteLength, k.deepest + cornerHeight(t) - t.fluteLength);
+    if (t.fluteLength && k.deepest + cornerHeight(t) > *t.fluteLength + 1e-6)
+      deep.add(p, k.deepest + cornerHeight(t), *t.fluteLength, k.deepest + cornerHeight(t) - *t.fluteLength);
     p.approachZ = in.stockAwareHeights ? std::min(in.safeZ, std::max(top, p.z) + in.rapidClearance) : in.safeZ;
     // The retract of the plunge before: as high as the stock along the move.
     if (i > 0) {

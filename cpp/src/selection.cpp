@@ -223,7 +223,7 @@ double estimateMinutes(const PlanInput& in, const std::vector<CoverDisk>& disks,
     // Levels of the flute length (motion.hpp), each fed from the clearance over
     // its stock: depth + c per level in all. Level k rapids down through the k - 1
     // cut above it and retracts from its bottom: L (depth + c) at rapid in all.
-    const double levels = t.fluteLength > 0.0 ? std::ceil(depth / t.fluteLength - 1e-9) : 1.0;
+    const double levels = t.fluteLength ? std::ceil(depth / *t.fluteLength - 1e-9) : 1.0;
     double minutes = (depth + levels * c) / t.feed + levels * (depth + c) / m.retractRate + in.motion.leadOut / t.feed;
     // Holes into solid deeper than a peck: up out of the hole and back per peck.
     const double pd = peckDepthOf(t), level = depth / levels;

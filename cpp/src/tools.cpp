@@ -27,7 +27,7 @@ double coreRadius(const Tool& t) { return t.centerCutting ? 0.0 : 0.5 * t.coreDi
 double peckDepthOf(const Tool& t) { return t.peckDepth > 0.0 ? t.peckDepth : 3.0 * t.diameter; }
 
 double engagementLimit(const Tool& t) {
-  double e = t.maxEngagement > 0.0 ? t.maxEngagement : std::numeric_limits<double>::infinity();
+  double e = t.maxEngagement.value_or(std::numeric_limits<double>::infinity());
   if (!t.centerCutting) e = std::min(e, 0.5 * (t.diameter - t.coreDiameter));
   return e;
 }

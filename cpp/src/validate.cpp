@@ -21,24 +21,26 @@ void requireFinite(double v, const std::string& what) {
   if (!std::isfinite(v)) throw Error(what + " is not a finite number");
 }
 
-// A real plunge mill's limits (engagement.hpp, motion.hpp); 0 is no limit.
+// A real plunge mill's limits (engagement.hpp, motion.hpp); absent is no limit.
 void validateMill(const Tool& t, const std::string& name) {
-  for (double v : {t.maxEngagement, t.minEngagement, t.coreDiameter, t.fluteLength, t.peckDepth})
-    if (!std::isfinite(v) || v < 0.0)
-      throw Error(name + ": max_engagement, min_engagement, core_diameter, flute_length and peck_depth must be >= 0");
+  for (const std::optional<double>& v : {t.maxEngagement, t.minEngagement, t.fluteLength})
+    if (v && !(std::isfinite(*v) && *v > 0.0))
+      throw Error(name + ": max_engagement, min_engagement and flute_length must be > 0 (leave one out for no limit)");
+  for (double v : {t.coreDiameter, t.peckDepth})
+    if (!std::isfinite(v) || v < 0.0) throw Error(name + ": core_diameter and peck_depth must be >= 0");
   if (t.peckDepth > 0.0 && t.peckDepth < 0.1 * t.diameter)
     throw Error(name + ".peck_depth is below 10 % of the diameter: a hole would take too many pecks (is it in mm?)");
-  if (t.maxEngagement > 0.0 && t.maxEngagement < 0.05 * t.diameter)
+  if (t.maxEngagement && *t.maxEngagement < 0.05 * t.diameter)
     throw Error(name + ".max_engagement is below 5 % of the diameter: too many plunges to plan (is it in mm?)");
-  if (t.minEngagement >= t.diameter) throw Error(name + ".min_engagement must be below the diameter");
-  if (t.maxEngagement > 0.0 && t.minEngagement > t.maxEngagement)
+  if (t.minEngagement.value_or(0.0) >= t.diameter) throw Error(name + ".min_engagement must be below the diameter");
+  if (t.maxEngagement && t.minEngagement.value_or(0.0) > *t.maxEngagement)
     throw Error(name + ".min_engagement is above its max_engagement");
   if (t.centerCutting && t.coreDiameter > 0.0)
     throw Error(name + ".core_diameter is for tools that do not cut at the centre (\"center_cutting\": false)");
   if (!t.centerCutting && !(t.coreDiameter > 0.0 && t.coreDiameter < 0.9 * t.diameter))
     throw Error(name + ": a tool that does not cut at the centre needs its core_diameter, above 0 and below 90 % of"
                        " the diameter");
-  if (t.fluteLength > 0.0 && t.fluteLength <= cutterProfile(cutterOf(t), 0.5 * t.diameter) + 0.1)
+  if (t.fluteLength && *t.fluteLength <= cutterProfile(cutterOf(t), 0.5 * t.diameter) + 0.1)
     throw Error(name + ".flute_length must exceed the corner radius by 0.1 mm or more");
 }
 

@@ -18,7 +18,7 @@ namespace {
 
 PlanInput pocket(double maxEngagement, bool centerCutting) {
   PlanInput in = test::rectanglePocket(140, 90);
-  in.tools[0].maxEngagement = maxEngagement;
+  if (maxEngagement > 0) in.tools[0].maxEngagement = maxEngagement;  // 0: none
   if (!centerCutting) {
     in.tools[0].centerCutting = false;
     in.tools[0].coreDiameter = 6;
@@ -43,8 +43,8 @@ void expectLimitsKept(const PlanInput& in, const Plan& p) {
     const HeightField::Contact k = f.contact({q.x, q.y}, c, q.z, t->centerCutting ? 0.0 : 0.5 * t->coreDiameter);
     if (q.start) {
       ++starts;
-    } else if (t->maxEngagement > 0) {
-      EXPECT_LE(cuts.engagement({q.x, q.y}, c, q.z), t->maxEngagement + 0.01) << q.x << " " << q.y;
+    } else if (t->maxEngagement) {
+      EXPECT_LE(cuts.engagement({q.x, q.y}, c, q.z), *t->maxEngagement + 0.01) << q.x << " " << q.y;
     }
     if (!t->centerCutting) {
       EXPECT_TRUE(k.coreClear) << q.x << " " << q.y;

@@ -181,7 +181,7 @@ TEST(Motion, PecksDeepHolesIntoSolid) {
   in.tools = {{16, 1, 100}, {8, 2, 100}};
   in.tools[1].peckDepth = 10;
   for (bool limited : {false, true}) {
-    for (Tool& t : in.tools) t.maxEngagement = limited ? 0.25 * t.diameter : 0;
+    for (Tool& t : in.tools) t.maxEngagement = limited ? std::optional<double>(0.25 * t.diameter) : std::nullopt;
     const Plan p = plan(in);
     HeightField f({-15, -15}, {135, 95}, 0.1, in.topZ);
     int pecked = 0, holes = 0;

@@ -29,12 +29,12 @@ struct Tool {
   double feed = 200.0;    // plunge feed, mm/min
   CutterShape shape = CutterShape::Flat;
   double cornerRadius = 0.0;  // bull nose only
-  // A real plunge mill (engagement.hpp, motion.hpp); 0 means no limit.
-  double maxEngagement = 0.0;  // "max_engagement": widest radial band one plunge may cut, mm
-  double minEngagement = 0.0;  // "min_engagement": narrower cuts deflect the tool into the hole beside
+  // A real plunge mill (engagement.hpp, motion.hpp); no limit is an absent value.
+  std::optional<double> maxEngagement = std::nullopt;  // "max_engagement": widest radial band one plunge may cut, mm
+  std::optional<double> minEngagement = std::nullopt;  // "min_engagement": narrower cuts deflect the tool into the hole beside
   bool centerCutting = true;   // "center_cutting": false for indexable plunge cutters
   double coreDiameter = 0.0;   // "core_diameter": the part of a non-centre-cutting tool that does not cut
-  double fluteLength = 0.0;    // "flute_length": deepest cut in one plunge, mm
+  std::optional<double> fluteLength = std::nullopt;  // "flute_length": deepest cut in one plunge, mm
   // "peck_depth": a hole drilled into solid deeper than this is pecked, mm
   // (0: three diameters, what plunge-mill makers advise; tools.hpp peckDepthOf).
   double peckDepth = 0.0;
