@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "broken.hpp"
 #include "cuts.hpp"
@@ -93,125 +96,173 @@ std::vector<double> pecksOf(const Plunge& p, const Tool& t, const HeightField& s
   return pecks;
 }
 
-}  // namespace
+// Each limit a plunge breaks: how many, the worst (most beyond it) and where.
+struct Worst {
+  BrokenLimit b;
+  double excess = -1.0;
+  bool start = false;  // the worst is a start
+  void add(const Plunge& p, double value, double limit, double beyond) {
+    ++b.count;
+    if (beyond <= excess) return;
+    excess = beyond;
+    start = p.start;
+    b.worst = value;
+    b.asked = limit;
+    b.at = {p.x, p.y};
+  }
+  // Said once with its count, the worst and why.
+  void say(Plan& plan, const std::string& what, const char* why) {
+    if (b.count == 0) return;
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(2) << b.count << what << " (" << b.worst << " mm against " << b.asked
+      << " mm)";
+    b.why = why;
+    sayBroken(plan, s.str(), b);
+  }
+};
 
-void planMotion(const Region& region, const DepthSolver& depths, Plan& plan, const MotionOptions& in) {
-  HeightField stock = stockOf(in.tools.all(), in.topZ, region);
-  Cuts cuts(kEngagementSkin);  // the plunges alone (not their lead-outs): the engagement as grown
-  std::vector<Plunge>& ps = plan.plunges;
-  Touched touched(in.tools.all().front().diameter, in.topZ);
-  auto highestAlong = [&](Vec2 a, Vec2 b, double r) { return touched.highestAlong(a, b, r); };
-  const double tol = 1.5 * stock.spacing();
-  // Each limit a plunge breaks: how many, the worst (most beyond it) and where.
-  struct Worst {
-    BrokenLimit b;
-    double excess = -1.0;
-    bool start = false;  // the worst is a start
-    void add(const Plunge& p, double value, double limit, double beyond) {
-      ++b.count;
-      if (beyond <= excess) return;
-      excess = beyond;
-      start = p.start;
-      b.worst = value;
-      b.asked = limit;
-      b.at = {p.x, p.y};
-    }
-  };
-  Worst over, thin, core, deep;
-  over.b = {"max_engagement", 0, 0, {}, 0, ""};
-  thin.b = {"min_engagement", 0, 0, {}, 0, ""};
-  core.b = {"core_diameter", 0, 0, {}, 0, ""};
-  deep.b = {"flute_length", 0, 0, {}, 0, ""};
+// The plan's moves laid out in execution order on one simulation of the
+// stock: heights, lead-outs and the limits' checks (planMotion).
+class MotionPass {
+ public:
+  MotionPass(const Region& region, const DepthSolver& depths, const MotionOptions& in)
+      : region_(region), depths_(depths), in_(in), stock_(stockOf(in.tools.all(), in.topZ, region)),
+        touched_(in.tools.all().front().diameter, in.topZ) {
+    over_.b = {"max_engagement", 0, 0, {}, 0, ""};
+    thin_.b = {"min_engagement", 0, 0, {}, 0, ""};
+    core_.b = {"core_diameter", 0, 0, {}, 0, ""};
+    deep_.b = {"flute_length", 0, 0, {}, 0, ""};
+  }
+  void run(Plan& plan);
+
+ private:
+  double measure(Plunge& p, const Tool& t);
+  void retractBefore(Plan& plan, size_t i);
+  void leadOut(Plan& plan, size_t i, const Tool& t);
+  void report(Plan& plan);
+
+  const Region& region_;
+  const DepthSolver& depths_;
+  const MotionOptions& in_;
+  HeightField stock_;
+  Cuts cuts_{kEngagementSkin};  // the plunges alone (not their lead-outs): the engagement as grown
+  Touched touched_;
+  Worst over_, thin_, core_, deep_;
+};
+
+void MotionPass::run(Plan& plan) {
   plan.stats.overEngaged = plan.stats.thinCuts = 0;
   plan.stats.leadOuts = plan.stats.raisedLeadOuts = plan.stats.noLeadOutMaterial = plan.stats.noLeadOutWalls = 0;
   plan.stats.travelLength = 0.0;
   plan.stats.peckedPlunges = 0;
+  std::vector<Plunge>& ps = plan.plunges;
   for (size_t i = 0; i < ps.size(); ++i) {
-    in.progress.tick(static_cast<double>(i) / ps.size());
+    in_.progress.tick(static_cast<double>(i) / ps.size());
     Plunge& p = ps[i];
-    const Tool& t = in.tools.byId(p.toolId);
-    const Cutter cutter = cutterOf(t);
-    const Vec2 c{p.x, p.y};
-    const double r = cutter.radius;
-    // What the plunge meets: its engagement measured exactly (cuts.hpp), as
-    // the growth measured it, in the order posted.
-    const HeightField::Contact k = stock.contact(c, cutter, p.z, coreRadius(t));
-    p.engagement = k.materialCells > 0 ? cuts.engagement(c, cutter, p.z) : 0.0;
-    const double top = highestAlong(c, c, r);
-    // A start is exempt where it drills: into solid, or (a tool that does not
-    // cut at its centre) onto its start hole. A start the growth had to make
-    // beside cut material (its fallback) is measured as any plunge.
-    const bool drills = p.start && (k.solid || !t.centerCutting);
-    if (!drills && t.maxEngagement > 0 && p.engagement > t.maxEngagement + kEngagementTolerance)
-      over.add(p, p.engagement, t.maxEngagement, p.engagement - t.maxEngagement);
-    if (!p.start && t.minEngagement > 0 && k.materialCells > 0 && p.engagement < t.minEngagement - tol)
-      thin.add(p, p.engagement, t.minEngagement, t.minEngagement - p.engagement);
-    if (!t.centerCutting && !k.coreClear) core.add(p, k.deepest, t.coreDiameter, k.deepest);
-    if (t.fluteLength > 0 && k.deepest + cornerHeight(t) > t.fluteLength + 1e-6)
-      deep.add(p, k.deepest + cornerHeight(t), t.fluteLength, k.deepest + cornerHeight(t) - t.fluteLength);
-    p.approachZ = in.stockAwareHeights ? std::min(in.safeZ, std::max(top, p.z) + in.rapidClearance) : in.safeZ;
-    // The retract of the plunge before: as high as the stock along the move.
-    if (i > 0) {
-      Plunge& q = ps[i - 1];
-      const Vec2 from = q.leadOut ? *q.leadOut : Vec2{q.x, q.y};
-      plan.stats.travelLength += dist(from, c);
-      q.retractZ = in.safeZ;
-      if (in.stockAwareHeights && q.toolId == p.toolId)
-        q.retractZ = std::min(in.safeZ, std::max({highestAlong(from, c, 0.5 * q.diameter) + in.rapidClearance,
-                                                  p.approachZ, q.z + in.rapidClearance}));
-    }
-    p.pecks = pecksOf(p, t, stock, in);
+    const Tool& t = in_.tools.byId(p.toolId);
+    const double top = measure(p, t);
+    p.approachZ = in_.stockAwareHeights ? std::min(in_.safeZ, std::max(top, p.z) + in_.rapidClearance) : in_.safeZ;
+    if (i > 0) retractBefore(plan, i);
+    p.pecks = pecksOf(p, t, stock_, in_);
     if (!p.pecks.empty()) ++plan.stats.peckedPlunges;
-    stock.cut(c, cutter, p.z);
-    cuts.add(c, cutter, p.z);
-    touched.add(c, r, p.z + cornerHeight(t));
-    p.leadOut.reset();
-    p.leadOutZ.reset();
-    if (in.leadOut > 0.0) {
-      // Back toward the plunge before, where the same tool just cut.
-      std::optional<Plunge> back;
-      if (i > 0 && ps[i - 1].toolId == p.toolId) back = ps[i - 1];
-      const LeadOut out = leadOutOf({in, region, depths, stock, touched}, p, cutter, back);
-      p.leadOut = out.to;
-      p.leadOutZ = out.z;
-      if (out.why == NoLeadOut::Material) ++plan.stats.noLeadOutMaterial;
-      if (out.why == NoLeadOut::Walls) ++plan.stats.noLeadOutWalls;
-      if (p.leadOut) ++plan.stats.leadOuts;
-      if (p.leadOutZ) ++plan.stats.raisedLeadOuts;
-    }
-    if (p.leadOut) {
-      touched.add(*p.leadOut, r, p.leadOutZ.value_or(p.z) + cornerHeight(t));
-      stock.cut(*p.leadOut, cutter, p.leadOutZ.value_or(p.z));  // what the next plunges meet
-    }
-    p.retractZ = in.safeZ;
+    const Cutter cutter = cutterOf(t);
+    stock_.cut({p.x, p.y}, cutter, p.z);
+    cuts_.add({p.x, p.y}, cutter, p.z);
+    touched_.add({p.x, p.y}, cutter.radius, p.z + cornerHeight(t));
+    leadOut(plan, i, t);
+    p.retractZ = in_.safeZ;
   }
-  // What the limits could not keep, each said once with its count, the worst and why.
-  plan.stats.overEngaged = over.b.count;
-  plan.stats.thinCuts = thin.b.count;
-  auto say = [&](Worst& w, const std::string& what, const char* why) {
-    if (w.b.count == 0) return;
-    std::ostringstream s;
-    s << std::fixed << std::setprecision(2) << w.b.count << what << " (" << w.b.worst << " mm against "
-      << w.b.asked << " mm)";
-    w.b.why = why;
-    sayBroken(plan, s.str(), w.b);
-  };
-  say(over, " plunges cut a wider band than their tool's max engagement",
-      over.start ? "a start the growth had to make beside cut material, where no path reached within the limit;"
-                   " a smaller plunger there, or a larger max engagement, avoids it"
-                 : "uneven depths of a sculptured floor leave steps thicker than the limit there; a lower max floor"
-                   " stock or a smaller plunger cuts them in thinner steps");
-  say(thin, " plunges cut a narrower band than their tool's min engagement",
-      "the last slivers of their region, where the walls leave no wider cut, and the tool may deflect there; a"
-      " smaller min engagement, or a smaller plunger for the slivers, avoids them");
-  say(core, " plunges of a non-centre-cutting tool have material under the core",
-      "uneven floor depths leave material there that the core cannot cut; a centre-cutting plunger, or a lower max"
-      " floor stock, clears it first");
-  say(deep, " plunges cut deeper than their tool's flute length",
-      "the material there stands higher above the stop than the flutes reach; a plunger with longer flutes would"
-      " cut it");
-  plan.stats.estimatedMinutes = motionMinutes(plan, in, false);
-  plan.stats.minutesAtSafeHeight = motionMinutes(plan, in, true);
+  report(plan);
+  plan.stats.estimatedMinutes = motionMinutes(plan, in_, false);
+  plan.stats.minutesAtSafeHeight = motionMinutes(plan, in_, true);
+}
+
+// What the plunge meets: its engagement measured exactly (cuts.hpp), as the
+// growth measured it, in the order posted, and the limits it breaks. Returns
+// the highest stock under it.
+double MotionPass::measure(Plunge& p, const Tool& t) {
+  const Cutter cutter = cutterOf(t);
+  const Vec2 c{p.x, p.y};
+  const HeightField::Contact k = stock_.contact(c, cutter, p.z, coreRadius(t));
+  p.engagement = k.materialCells > 0 ? cuts_.engagement(c, cutter, p.z) : 0.0;
+  const double top = touched_.highestAlong(c, c, cutter.radius);
+  const double tol = 1.5 * stock_.spacing();
+  // A start is exempt where it drills: into solid, or (a tool that does not
+  // cut at its centre) onto its start hole. A start the growth had to make
+  // beside cut material (its fallback) is measured as any plunge.
+  const bool drills = p.start && (k.solid || !t.centerCutting);
+  if (!drills && t.maxEngagement > 0 && p.engagement > t.maxEngagement + kEngagementTolerance)
+    over_.add(p, p.engagement, t.maxEngagement, p.engagement - t.maxEngagement);
+  if (!p.start && t.minEngagement > 0 && k.materialCells > 0 && p.engagement < t.minEngagement - tol)
+    thin_.add(p, p.engagement, t.minEngagement, t.minEngagement - p.engagement);
+  if (!t.centerCutting && !k.coreClear) core_.add(p, k.deepest, t.coreDiameter, k.deepest);
+  if (t.fluteLength > 0 && k.deepest + cornerHeight(t) > t.fluteLength + 1e-6)
+    deep_.add(p, k.deepest + cornerHeight(t), t.fluteLength, k.deepest + cornerHeight(t) - t.fluteLength);
+  return top;
+}
+
+// The retract of the plunge before plunge i: as high as the stock along the move.
+void MotionPass::retractBefore(Plan& plan, size_t i) {
+  const Plunge& p = plan.plunges[i];
+  Plunge& q = plan.plunges[i - 1];
+  const Vec2 c{p.x, p.y};
+  const Vec2 from = q.leadOut ? *q.leadOut : Vec2{q.x, q.y};
+  plan.stats.travelLength += dist(from, c);
+  q.retractZ = in_.safeZ;
+  if (in_.stockAwareHeights && q.toolId == p.toolId)
+    q.retractZ = std::min(in_.safeZ, std::max({touched_.highestAlong(from, c, 0.5 * q.diameter) + in_.rapidClearance,
+                                               p.approachZ, q.z + in_.rapidClearance}));
+}
+
+// Plunge i's lead-out (lead_out.hpp), cut into the stock the next plunges meet.
+void MotionPass::leadOut(Plan& plan, size_t i, const Tool& t) {
+  Plunge& p = plan.plunges[i];
+  const Cutter cutter = cutterOf(t);
+  p.leadOut.reset();
+  p.leadOutZ.reset();
+  if (in_.leadOut > 0.0) {
+    // Back toward the plunge before, where the same tool just cut.
+    std::optional<Plunge> back;
+    if (i > 0 && plan.plunges[i - 1].toolId == p.toolId) back = plan.plunges[i - 1];
+    const LeadOut out = leadOutOf({in_, region_, depths_, stock_, touched_}, p, cutter, back);
+    p.leadOut = out.to;
+    p.leadOutZ = out.z;
+    if (out.why == NoLeadOut::Material) ++plan.stats.noLeadOutMaterial;
+    if (out.why == NoLeadOut::Walls) ++plan.stats.noLeadOutWalls;
+    if (p.leadOut) ++plan.stats.leadOuts;
+    if (p.leadOutZ) ++plan.stats.raisedLeadOuts;
+  }
+  if (p.leadOut) {
+    touched_.add(*p.leadOut, cutter.radius, p.leadOutZ.value_or(p.z) + cornerHeight(t));
+    stock_.cut(*p.leadOut, cutter, p.leadOutZ.value_or(p.z));  // what the next plunges meet
+  }
+}
+
+// What the limits could not keep, each said once with its count, the worst and why.
+void MotionPass::report(Plan& plan) {
+  plan.stats.overEngaged = over_.b.count;
+  plan.stats.thinCuts = thin_.b.count;
+  over_.say(plan, " plunges cut a wider band than their tool's max engagement",
+            over_.start
+                ? "a start the growth had to make beside cut material, where no path reached within the limit;"
+                  " a smaller plunger there, or a larger max engagement, avoids it"
+                : "uneven depths of a sculptured floor leave steps thicker than the limit there; a lower max floor"
+                  " stock or a smaller plunger cuts them in thinner steps");
+  thin_.say(plan, " plunges cut a narrower band than their tool's min engagement",
+            "the last slivers of their region, where the walls leave no wider cut, and the tool may deflect there; a"
+            " smaller min engagement, or a smaller plunger for the slivers, avoids them");
+  core_.say(plan, " plunges of a non-centre-cutting tool have material under the core",
+            "uneven floor depths leave material there that the core cannot cut; a centre-cutting plunger, or a lower"
+            " max floor stock, clears it first");
+  deep_.say(plan, " plunges cut deeper than their tool's flute length",
+            "the material there stands higher above the stop than the flutes reach; a plunger with longer flutes"
+            " would cut it");
+}
+
+}  // namespace
+
+void planMotion(const Region& region, const DepthSolver& depths, Plan& plan, const MotionOptions& in) {
+  MotionPass(region, depths, in).run(plan);
 }
 
 double motionMinutes(const Plan& plan, const MotionOptions& in, bool atSafeHeight) {
