@@ -250,8 +250,8 @@ std::vector<Vec2> walk(const Polygons& ring, Vec2 at, double step) {
   return out;
 }
 
-void refineContour(GrowthPath& path, const Polygons& centres, const Region& region, double r, double allowance,
-                   double scallop) {
+void refineContour(GrowthPath& path, const Polygons& centres, const Region& region, const WallScallop& band) {
+  const double r = band.r;
   for (int pass = 0; pass < 4; ++pass) {
     std::vector<Vec2> out;
     bool added = false;
@@ -263,7 +263,7 @@ void refineContour(GrowthPath& path, const Polygons& centres, const Region& regi
       const std::vector<Vec2> cusps = intersectCircles({a, r}, {b, r});
       double wall = std::numeric_limits<double>::infinity();  // the cusp on the wall side
       for (Vec2 q : cusps) wall = std::min(wall, region.wallDistance(q, 2 * r));
-      if (cusps.size() == 2 && wall - allowance > scallop) {
+      if (cusps.size() == 2 && wall - band.allowance > band.scallop) {
         out.push_back(nearestOnLoops(centres, a + (b - a) * 0.5));
         added = true;
       }

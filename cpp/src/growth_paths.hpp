@@ -43,8 +43,12 @@ std::vector<Vec2> walk(const Polygons& ring, Vec2 at, double step);
 // leave a deeper scallop at the wall than on a straight one: a position is
 // added between two whose scallop (the circles' crossing on the wall side)
 // stands more than `scallop` beyond the allowance.
-void refineContour(GrowthPath& path, const Polygons& centres, const Region& region, double r, double allowance,
-                   double scallop);
+struct WallScallop {
+  double r;          // the plunges' radius
+  double allowance;  // the radial allowance
+  double scallop;    // the most the scallops may stand beyond it
+};
+void refineContour(GrowthPath& path, const Polygons& centres, const Region& region, const WallScallop& band);
 
 // Row positions the contour cuts anyway: every sample of the disk (rings a
 // quarter radius apart) lies within r of a contour position. Between the

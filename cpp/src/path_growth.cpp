@@ -93,7 +93,8 @@ std::vector<GrowthPath> PathGrowth::layPaths(const Polygons& centres, GrowthPatt
   std::vector<GrowthPath> paths = growthPaths(centres, step, wallStep, spacing, pattern);
   if (scallop > 0)
     for (GrowthPath& p : paths)
-      if (p.contour) refineContour(p, centres, g_.region_, r, g_.in_.radialAllowance, kWallBand * g_.in_.maxWallStock);
+      if (p.contour)
+        refineContour(p, centres, g_.region_, {r, g_.in_.radialAllowance, kWallBand * g_.in_.maxWallStock});
   return paths;
 }
 
