@@ -59,8 +59,8 @@ std::vector<Vec2> Touched::holesNear(Vec2 c, double r, double bottom, double fro
 
 bool Touched::grazes(Vec2 c, Vec2 end, double r, double bottom, double limit) const {
   // The inner disk's polygon (inscribed) grown by its chord error: it holds the whole circle.
-  Polygons rest =
-      poly::subtract({poly::disk({end, r - 0.01}, kCoverChord)}, {poly::disk({c, r + limit + kCoverChord}, kCoverChord)});
+  Polygons rest = poly::subtract({poly::disk({end, r - 0.01}, kCoverChord)},
+                                 {poly::disk({c, r + limit + kCoverChord}, kCoverChord)});
   if (poly::area(rest) <= 1e-6) return false;
   std::vector<Circle> near;
   forEachDiskNear(end, 2 * r, [&](const Disk& d) {
