@@ -1,13 +1,16 @@
 // Internal: small helpers the modules share (not installed, not part of the API).
 #pragma once
 #include <algorithm>
+#include <cmath>
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
 #include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <unordered_map>
 #include <utility>
+#include <vector>
 
 #include "plunge/geometry.hpp"
 
@@ -82,5 +85,30 @@ inline BBox boxOf(const Segment& s) {
 }
 inline BBox boxOf(Vec2 lo, Vec2 hi) { return BBox(BPoint(lo.x, lo.y), BPoint(hi.x, hi.y)); }
 inline BBox boxAround(Vec2 c, double r) { return BBox(BPoint(c.x - r, c.y - r), BPoint(c.x + r, c.y + r)); }
+
+// A grid cell's key. Unsigned: shifting a negative cell index left is undefined.
+inline long long cellKey(long i, long j) {
+  const unsigned long long hi = static_cast<unsigned long long>(i) << 32;
+  return static_cast<long long>(hi ^ (static_cast<unsigned long long>(j) & 0xffffffffULL));
+}
+// The key of the cell `cell` wide that holds p.
+inline long long cellKeyOf(Vec2 p, double cell) {
+  return cellKey(static_cast<long>(std::floor(p.x / cell)), static_cast<long>(std::floor(p.y / cell)));
+}
+
+// Items of a grid keyed by cellKey, cells `cell` wide: whether f holds for
+// any in the 3 x 3 cells around c (each visited until one does).
+template <class T, class F>
+bool anyNear(const std::unordered_map<long long, std::vector<T>>& grid, Vec2 c, double cell, F f) {
+  const long ci = static_cast<long>(std::floor(c.x / cell)), cj = static_cast<long>(std::floor(c.y / cell));
+  for (long j = cj - 1; j <= cj + 1; ++j)
+    for (long i = ci - 1; i <= ci + 1; ++i) {
+      const auto it = grid.find(cellKey(i, j));
+      if (it != grid.end())
+        for (const T& item : it->second)
+          if (f(item)) return true;
+    }
+  return false;
+}
 
 }  // namespace plunge::detail

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "depth.hpp"
+#include "growth_paths.hpp"
 #include "heightfield.hpp"
 #include "plunge/progress.hpp"
 #include "region.hpp"
@@ -29,31 +30,6 @@
 #include "plunge/types.hpp"
 
 namespace plunge {
-
-// Positions a limited tool grows its cut along (thesis: none; what plunge-mill
-// makers prescribe): the contour of its centre region (every loop, walls and
-// islands) at most `wallStep` apart, and rows along the region's long axis (or
-// offsets of the contour), at most `spacing` apart, their positions at most
-// `step` apart. A plunge next
-// to the last one on its path cuts a crescent no thicker than the step, so a
-// limit e costs about area / (rowSpacing x e) plunges, however wide the rows.
-struct GrowthPath {
-  std::vector<Vec2> at;
-  bool closed = false;   // a loop: its last position is next to its first
-  bool contour = false;  // a loop of the contour (entered first; keeps the wall band)
-  size_t piece = 0;      // the connected piece of the region it lies in
-};
-// Inside the contour, `pattern`: rows `spacing` apart, or offsets of the
-// contour `spacing` apart (loops, each with a bridge from the loop outside it
-// as a row meets the contour). Auto is taken as rows here; the growth tries
-// both.
-std::vector<GrowthPath> growthPaths(const Polygons& centres, double step, double wallStep, double spacing,
-                                    GrowthPattern pattern = GrowthPattern::Rows);
-// How far apart rows of plunges of radius r, `step` apart along each row and
-// staggered by half a step, may run and still cut everything between them.
-double rowSpacing(double r, double step);
-// The same for loops side by side (offsets: not staggered).
-double loopSpacing(double r, double step);
 
 // What the growth needs of the job (PlanInput's fields of the same names).
 struct EngagementOptions {
