@@ -140,7 +140,7 @@ void Grower::growInRings(ToolRun& run, const Polygons& centres) {
   // Along a ring, plunges a chord of the band apart: the next ring's offset
   // follows the scallops they leave.
   const double step = std::clamp(kRingChord * std::sqrt(std::max(0.0, r * r - depthIn * depthIn)),
-                                 std::max(run.tool.minEngagement, 2 * stock_.spacing()), r);
+                                 std::max(run.tool.minEngagement.value_or(0.0), 2 * stock_.spacing()), r);
   std::vector<bool> triedStart(run.planned.size(), false);
   int stalls = 0;  // rounds that cut no target point (a guard: each round should)
   while (run.targets.left() > 0 && stalls < kStallRounds) {
@@ -170,7 +170,7 @@ std::optional<Grower::RingPlunge> Grower::ringPlunge(ToolRun& run, Vec2 c) {
   if (!stock_.contact(c, run.cutter, *z, run.coreR).coreClear) return std::nullopt;
   const double engaged = cuts_.engagement(c, run.cutter, *z, run.limit + kExactSlack);
   if (engaged > run.limit + kExactSlack) return std::nullopt;
-  return RingPlunge{*z, engaged < run.tool.minEngagement};
+  return RingPlunge{*z, engaged < run.tool.minEngagement.value_or(0.0)};
 }
 
 // The plunges of one ring; returns how many were made.

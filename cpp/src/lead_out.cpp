@@ -63,8 +63,8 @@ class LeadOutSearch {
 };
 
 LeadOutSearch::LeadOutSearch(const LeadOutContext& context, const Plunge& p, const Cutter& cutter)
-    : x_(context), p_(p), cutter_(cutter), c_{p.x, p.y}, r_(cutter.radius), L_(context.in.leadOut),
-      samples_(std::max(2, static_cast<int>(std::ceil(context.in.leadOut / (0.25 * cutter.radius))))) {}
+    : x_(context), p_(p), cutter_(cutter), c_{p.x, p.y}, r_(cutter.radius), L_(context.in.settings.leadOut),
+      samples_(std::max(2, static_cast<int>(std::ceil(context.in.settings.leadOut / (0.25 * cutter.radius))))) {}
 
 // Toward holes cut before, as wide and as deep, d from this one (the
 // plunge before first): the moved disk lies in the two holes but where it

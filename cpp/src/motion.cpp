@@ -37,8 +37,7 @@ HeightField stockOf(const std::vector<Tool>& tools, double topZ, const Region& r
   double rMin = 0.5 * tools.back().diameter, limit = rMin;
   for (const Tool& t : tools) {
     rMin = std::min(rMin, 0.5 * t.diameter);
-    if (t.minEngagement > 0) limit = std::min(limit, t.minEngagement);
-    if (t.maxEngagement > 0) limit = std::min(limit, t.maxEngagement);
+    limit = std::min({limit, t.minEngagement.value_or(limit), t.maxEngagement.value_or(limit)});
   }
   const double rMax = 0.5 * tools.front().diameter;
   const Vec2 lo = region.minCorner() - Vec2{rMax, rMax}, hi = region.maxCorner() + Vec2{rMax, rMax};
@@ -54,11 +53,11 @@ std::vector<Plunge> splitIntoLevels(const std::vector<Plunge>& ordered, const Mo
     const Cutter cutter = cutterOf(t);
     std::vector<double> top;
     int levels = 1;
-    const double step = t.fluteLength - cornerHeight(t);
+    const double step = t.fluteLength.value_or(0.0) - cornerHeight(t);
     for (size_t k = i; k < j; ++k) {
       const Vec2 c{ordered[k].x, ordered[k].y};
       top.push_back(touched.highestAlong(c, c, cutter.radius));
-      if (t.fluteLength > 0.0)
+      if (t.fluteLength)
         levels = std::max(levels, static_cast<int>(std::ceil((top.back() - ordered[k].z) / step - 1e-9)));
     }
     stats.levels = std::max(stats.levels, levels);
@@ -90,7 +89,7 @@ constexpr double kEngagementTolerance = 0.01;
 std::vector<double> pecksOf(const Plunge& p, const Tool& t, const HeightField& stock, const MotionOptions& in) {
   std::vector<double> pecks;
   const double top = stock.heightAt({p.x, p.y});
-  if (!in.peck || top <= p.z + kEngagementSkin) return pecks;
+  if (!in.settings.peck || top <= p.z + kEngagementSkin) return pecks;
   const double peck = peckDepthOf(t);
   for (double z = top - peck; z > p.z + 0.1 * peck; z -= peck) pecks.push_back(z);
   return pecks;
@@ -161,7 +160,7 @@ void MotionPass::run(Plan& plan) {
     Plunge& p = ps[i];
     const Tool& t = in_.tools.byId(p.toolId);
     const double top = measure(p, t);
-    p.approachZ = in_.stockAwareHeights ? std::min(in_.safeZ, std::max(top, p.z) + in_.rapidClearance) : in_.safeZ;
+    p.approachZ = in_.settings.stockAwareHeights ? std::min(in_.safeZ, std::max(top, p.z) + in_.settings.rapidClearance) : in_.safeZ;
     if (i > 0) retractBefore(plan, i);
     p.pecks = pecksOf(p, t, stock_, in_);
     if (!p.pecks.empty()) ++plan.stats.peckedPlunges;
@@ -191,13 +190,13 @@ double MotionPass::measure(Plunge& p, const Tool& t) {
   // cut at its centre) onto its start hole. A start the growth had to make
   // beside cut material (its fallback) is measured as any plunge.
   const bool drills = p.start && (k.solid || !t.centerCutting);
-  if (!drills && t.maxEngagement > 0 && p.engagement > t.maxEngagement + kEngagementTolerance)
-    over_.add(p, p.engagement, t.maxEngagement, p.engagement - t.maxEngagement);
-  if (!p.start && t.minEngagement > 0 && k.materialCells > 0 && p.engagement < t.minEngagement - tol)
-    thin_.add(p, p.engagement, t.minEngagement, t.minEngagement - p.engagement);
+  if (!drills && t.maxEngagement && p.engagement > *t.maxEngagement + kEngagementTolerance)
+    over_.add(p, p.engagement, *t.maxEngagement, p.engagement - *t.maxEngagement);
+  if (!p.start && t.minEngagement && k.materialCells > 0 && p.engagement < *t.minEngagement - tol)
+    thin_.add(p, p.engagement, *t.minEngagement, *t.minEngagement - p.engagement);
   if (!t.centerCutting && !k.coreClear) core_.add(p, k.deepest, t.coreDiameter, k.deepest);
-  if (t.fluteLength > 0 && k.deepest + cornerHeight(t) > t.fluteLength + 1e-6)
-    deep_.add(p, k.deepest + cornerHeight(t), t.fluteLength, k.deepest + cornerHeight(t) - t.fluteLength);
+  if (t.fluteLength && k.deepest + cornerHeight(t) > *t.fluteLength + 1e-6)
+    deep_.add(p, k.deepest + cornerHeight(t), *t.fluteLength, k.deepest + cornerHeight(t) - *t.fluteLength);
   return top;
 }
 
@@ -209,9 +208,9 @@ void MotionPass::retractBefore(Plan& plan, size_t i) {
   const Vec2 from = q.leadOut ? *q.leadOut : Vec2{q.x, q.y};
   plan.stats.travelLength += dist(from, c);
   q.retractZ = in_.safeZ;
-  if (in_.stockAwareHeights && q.toolId == p.toolId)
-    q.retractZ = std::min(in_.safeZ, std::max({touched_.highestAlong(from, c, 0.5 * q.diameter) + in_.rapidClearance,
-                                               p.approachZ, q.z + in_.rapidClearance}));
+  if (in_.settings.stockAwareHeights && q.toolId == p.toolId)
+    q.retractZ = std::min(in_.safeZ, std::max({touched_.highestAlong(from, c, 0.5 * q.diameter) + in_.settings.rapidClearance,
+                                               p.approachZ, q.z + in_.settings.rapidClearance}));
 }
 
 // Plunge i's lead-out (lead_out.hpp), cut into the stock the next plunges meet.
@@ -220,7 +219,7 @@ void MotionPass::leadOut(Plan& plan, size_t i, const Tool& t) {
   const Cutter cutter = cutterOf(t);
   p.leadOut.reset();
   p.leadOutZ.reset();
-  if (in_.leadOut > 0.0) {
+  if (in_.settings.leadOut > 0.0) {
     // Back toward the plunge before, where the same tool just cut.
     std::optional<Plunge> back;
     if (i > 0 && plan.plunges[i - 1].toolId == p.toolId) back = plan.plunges[i - 1];
@@ -266,7 +265,7 @@ void planMotion(const Region& region, const DepthSolver& depths, Plan& plan, con
 }
 
 double motionMinutes(const Plan& plan, const MotionOptions& in, bool atSafeHeight) {
-  const TimeModel& m = in.timeModel;
+  const TimeModel& m = in.settings.timeModel;
   double minutes = 0.0, z = in.safeZ;
   int changes = 0;
   for (size_t i = 0; i < plan.plunges.size(); ++i) {
@@ -281,8 +280,8 @@ double motionMinutes(const Plan& plan, const MotionOptions& in, bool atSafeHeigh
     const double retract = atSafeHeight ? in.safeZ : p.retractZ;
     minutes += std::max(0.0, z - approach) / m.retractRate + (approach - p.z) / feed;
     // Each peck: up out of the hole and back to just above its depth, at rapid.
-    for (double at : p.pecks) minutes += (2 * (approach - at) - in.rapidClearance) / m.retractRate;
-    if (!p.pecks.empty()) minutes += in.peckDwell / 60.0;
+    for (double at : p.pecks) minutes += (2 * (approach - at) - in.settings.rapidClearance) / m.retractRate;
+    if (!p.pecks.empty()) minutes += in.settings.peckDwell / 60.0;
     if (p.leadOut) minutes += (dist(*p.leadOut, {p.x, p.y}) + p.leadOutZ.value_or(p.z) - p.z) / feed;
     minutes += (retract - p.z) / m.retractRate;
     z = retract;

@@ -34,12 +34,7 @@ struct MotionOptions {
   double safeZ = 5.0;
   double radialAllowance = 0.0;
   double floorAllowance = 0.0;
-  double leadOut = 0.5;
-  bool stockAwareHeights = true;
-  double rapidClearance = 1.0;
-  TimeModel timeModel;
-  bool peck = true;         // holes into solid deeper than a tool's peck depth are pecked
-  double peckDwell = 0.0;   // s at the bottom of a pecked hole
+  MotionSettings settings;  // lead-outs, heights, pecks, the time model (PlanInput::motion)
   Progress progress;  // ticked per plunge (it may cancel)
 };
 

@@ -85,7 +85,7 @@ PathGrowth::PathGrowth(Grower& g, ToolRun& run, const Polygons& centres, GrowthP
 std::vector<GrowthPath> PathGrowth::layPaths(const Polygons& centres, GrowthPattern pattern) const {
   const double r = run_.cutter.radius, e = run_.limit, coreR = run_.coreR, h = g_.stock_.spacing();
   const double step = std::max(std::min(e - 0.25 * h, coreR > 0 ? r - coreR - coreMargin_ - 0.05 * h : e),
-                               std::max(run_.tool.minEngagement, 2 * h));
+                               std::max(run_.tool.minEngagement.value_or(0.0), 2 * h));
   double wallStep = step;
   const double scallop = kContourScallop * g_.in_.maxWallStock;
   if (scallop > 0 && scallop < r) wallStep = std::min(step, 2 * std::sqrt(r * r - (r - scallop) * (r - scallop)));
@@ -143,7 +143,7 @@ PathGrowth::Verdict PathGrowth::judge(size_t k) {
   if (p.skip) return Verdict::Skip;
   if (p.solid) return Verdict::Solid;  // a drill into solid: a start, whatever the limit
   if (!p.coreClear || p.engagement > run_.limit + kExactSlack) return Verdict::Blocked;
-  return p.engagement < run_.tool.minEngagement ? Verdict::Thin : Verdict::Ok;
+  return p.engagement < run_.tool.minEngagement.value_or(0.0) ? Verdict::Thin : Verdict::Ok;
 }
 
 // A plunge at position k; the verdicts near it are measured again.

@@ -536,12 +536,7 @@ MotionOptions motionOptions(const PlanInput& in, const ToolTable& tools, const P
   o.safeZ = in.safeZ;
   o.radialAllowance = in.radialAllowance;
   o.floorAllowance = in.floorAllowance;
-  o.leadOut = in.motion.leadOut;
-  o.stockAwareHeights = in.motion.stockAwareHeights;
-  o.rapidClearance = in.motion.rapidClearance;
-  o.timeModel = in.motion.timeModel;
-  o.peck = in.motion.peck;
-  o.peckDwell = in.motion.peckDwell;
+  o.settings = in.motion;
   o.progress = progress;
   return o;
 }

@@ -100,7 +100,7 @@ struct HandMadeBox {
     m.tools = ToolTable({{20, 1, 150}});
     m.topZ = 0;
     m.safeZ = 10;
-    m.leadOut = 1.0;
+    m.settings.leadOut = 1.0;
     return m;
   }();
 };
@@ -118,9 +118,9 @@ TEST(Motion, OnItsOwnOptions) {
   plan.plunges = {plungeOf(o.tools.byId(1), {30, 30}, -20), plungeOf(o.tools.byId(1), {38, 30}, -20)};
   planMotion(region, depths, plan, o);
   const Plunge &a = plan.plunges[0], &b = plan.plunges[1];
-  EXPECT_DOUBLE_EQ(a.approachZ, o.topZ + o.rapidClearance);  // uncut stock under the first
-  EXPECT_DOUBLE_EQ(a.retractZ, o.topZ + o.rapidClearance);   // the stock along the move is top_z
-  EXPECT_DOUBLE_EQ(b.approachZ, o.topZ + o.rapidClearance);  // part of its disk is still uncut
+  EXPECT_DOUBLE_EQ(a.approachZ, o.topZ + o.settings.rapidClearance);  // uncut stock under the first
+  EXPECT_DOUBLE_EQ(a.retractZ, o.topZ + o.settings.rapidClearance);   // the stock along the move is top_z
+  EXPECT_DOUBLE_EQ(b.approachZ, o.topZ + o.settings.rapidClearance);  // part of its disk is still uncut
   ASSERT_TRUE(b.leadOut.has_value());
   EXPECT_NEAR(dist(*b.leadOut, {38, 30}), 1.0, 1e-9);
   EXPECT_LT(b.leadOut->x, 38.0);  // toward the first hole, the only cut space
@@ -147,9 +147,9 @@ TEST(Motion, ALeadOutRisesOutOfTheStepsAround) {
     plan.plunges.push_back(plungeOf(o.tools.byId(1), {50, 30}, -20));
     planMotion(region, depths, plan, o);
     const Plunge& deep = plan.plunges.back();
-    if (step <= o.leadOut) {
+    if (step <= o.settings.leadOut) {
       ASSERT_TRUE(deep.leadOut && deep.leadOutZ);
-      EXPECT_NEAR(dist(*deep.leadOut, {50, 30}), o.leadOut, 1e-9);
+      EXPECT_NEAR(dist(*deep.leadOut, {50, 30}), o.settings.leadOut, 1e-9);
       EXPECT_GE(*deep.leadOutZ, -20 + step - 1e-9);  // clear of the steps
       EXPECT_LE(*deep.leadOutZ, -20 + step + 0.01);  // and no higher than they need
       EXPECT_EQ(plan.stats.raisedLeadOuts, 1);
