@@ -36,7 +36,7 @@ struct EngagementOptions {
   ToolTable tools;
   double radialAllowance = 0.0;
   double floorAllowance = 0.0;
-  double topZ = 0.0;
+  Material material{std::nullopt, 0.0};  // what the operations before left, up to top_z
   double maxWallStock = 0.0;   // the wall band the contour keeps (stock.hpp)
   double maxFloorStock = 0.0;  // over sculptured floors, what the growth leaves to the finisher
   std::optional<Vec2> start;   // where the machine starts

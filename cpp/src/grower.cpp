@@ -53,7 +53,7 @@ void Grower::settle() {
 // The tip height of a plunge at c (its gouge-free depth, 4.4), or nothing above top_z.
 std::optional<double> Grower::stopAt(Vec2 c, const Tool& t) const {
   const double z = depths_.plungeHeight(c, cutterOf(t), in_.floorAllowance, in_.radialAllowance);
-  if (z >= in_.topZ) return std::nullopt;
+  if (z >= in_.material.topZ()) return std::nullopt;
   return z;
 }
 

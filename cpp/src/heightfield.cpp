@@ -12,6 +12,16 @@ HeightField::HeightField(Vec2 lo, Vec2 hi, double spacing, double topZ) : lo_(lo
   z_.assign(static_cast<size_t>(nx_ * ny_), static_cast<float>(topZ));
 }
 
+void HeightField::lowerTo(const Material& material) {
+  if (!material.known()) return;
+  for (long j = 0; j < ny_; ++j)
+    for (long i = 0; i < nx_; ++i) {
+      const Vec2 lo{lo_.x + i * h_, lo_.y + j * h_};
+      float& cell = z_[j * nx_ + i];
+      cell = std::min(cell, static_cast<float>(material.highestIn(lo, lo + Vec2{h_, h_})));
+    }
+}
+
 double HeightField::at(long i, long j) const {
   if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return top_;
   return z_[j * nx_ + i];

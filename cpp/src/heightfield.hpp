@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "depth.hpp"
+#include "material.hpp"
 #include "plunge/geometry.hpp"
 
 namespace plunge {
@@ -24,6 +25,9 @@ class HeightField {
   // Outside [lo, hi] (beyond the walls) the stock is topZ.
   HeightField(Vec2 lo, Vec2 hi, double spacing, double topZ);
 
+  // Lowers every cell to the material the operations before left over its
+  // square (the highest of it: material.hpp).
+  void lowerTo(const Material& material);
   // Removes what a plunge of `cutter` with its tip at z cuts.
   void cut(Vec2 c, const Cutter& cutter, double z);
   // Stock height at the cell containing p.

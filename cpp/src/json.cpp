@@ -179,6 +179,30 @@ void readTools(const json& j, PlanInput& in) {
   in.tools = toolList(j["tools"], "tools", in.notes);
 }
 
+// "material": the top of the material the operations before left, over a
+// raster (MaterialGrid).
+MaterialGrid readMaterial(const json& j) {
+  if (!j.is_object()) throw Error("material: expected {\"origin\", \"spacing\", \"nx\", \"ny\", \"top\"}");
+  onlyKeys(j, {"origin", "spacing", "nx", "ny", "top"}, "material: ");
+  for (const char* key : {"origin", "spacing", "nx", "ny", "top"})
+    if (!j.contains(key)) throw Error(std::string("material.") + key + ": required");
+  MaterialGrid g;
+  g.origin = point(j["origin"], "material.origin");
+  g.spacing = number(j["spacing"], "material.spacing");
+  for (const auto& [key, n] : {std::pair{"nx", &g.nx}, std::pair{"ny", &g.ny}}) {
+    if (!j[key].is_number_unsigned() || j[key].get<unsigned long long>() == 0)
+      throw Error(std::string("material.") + key + ": expected a positive whole number of cells");
+    *n = j[key].get<size_t>();
+  }
+  const json& top = j["top"];
+  if (!top.is_array() || top.size() / g.nx / g.ny != 1 || top.size() != g.nx * g.ny)
+    throw Error("material.top: expected nx * ny = " + std::to_string(g.nx) + " * " + std::to_string(g.ny) +
+                " heights, row by row");
+  g.top.reserve(top.size());
+  for (const json& v : top) g.top.push_back(number(v, "material.top"));
+  return g;
+}
+
 Floor readFloor(const json& j) {
   if (!j.contains("floor") || !j["floor"].is_object()) throw Error("floor: required, e.g. {\"z\": -10}");
   const json& f = j["floor"];
@@ -299,7 +323,7 @@ PlanInput planInputFromValue(const json& j) {
             "min_coverage", "contact_ratio", "packing_order", "growth_pattern", "sequencing", "start",
             "tool_library", "selection", "time_model", "grid", "max_wall_stock", "max_floor_stock", "lead_out",
             "stock_aware_heights", "rapid_clearance", "max_plunges", "final_depth", "peck", "peck_dwell",
-            "sections"},
+            "sections", "material"},
            "input: ");
   PlanInput in;
   if (j.contains("version") && !(j["version"].is_number_integer() && j["version"].get<long long>() == 1))
@@ -330,6 +354,7 @@ PlanInput planInputFromValue(const json& j) {
       in.floor.sections.push_back(std::move(s));
     }
   }
+  if (j.contains("material")) in.material = readMaterial(j["material"]);
   readTools(j, in);
   in.floor.surface = readFloor(j);
   readOptionObjects(j, in);
@@ -392,6 +417,8 @@ json planToValue(const Plan& plan) {
                   {"mean_floor_stock", s.meanFloorStock},
                   {"volume_removed", s.volumeRemoved},
                   {"volume_left", s.volumeLeft},
+                  {"volume_before", s.volumeBefore},
+                  {"air_plunges", s.airPlunges},
                   {"rest_plunges", s.restPlunges},
                   {"start_holes", s.startHoles},
                   {"over_engaged", s.overEngaged},

@@ -28,6 +28,20 @@ void requireLength(double v, const std::string& what) {
                 " mm (100 m) any machine travels: is it in mm?");
 }
 
+void checkMaterial(const MaterialGrid& g) {
+  if (g.nx * g.ny > kMaxMaterialCells)
+    throw Error("material: " + std::to_string(g.nx) + " x " + std::to_string(g.ny) + " cells, more than " +
+                std::to_string(kMaxMaterialCells) + ": a coarser spacing");
+  requireLength(g.origin.x, "material.origin");
+  requireLength(g.origin.y, "material.origin");
+  if (!(g.spacing > 0.0) || g.spacing * static_cast<double>(std::max(g.nx, g.ny)) > 2 * kMaxLength)
+    throw Error("material.spacing: " + mm(g.spacing) + " mm: expected a positive cell size");
+  for (double v : g.top) {
+    if (!std::isfinite(v)) throw Error("material.top: a height is not a number");
+    requireLength(v, "material.top: a height of");
+  }
+}
+
 double pocketArea(const PlanInput& in) {
   double a = std::fabs(signedArea(in.boundary));
   for (const Loop& l : in.islands) a -= std::fabs(signedArea(l));
@@ -71,6 +85,7 @@ void checkScale(const PlanInput& in) {
       requireLength(p.x, "island " + std::to_string(i + 1) + ": coordinate");
       requireLength(p.y, "island " + std::to_string(i + 1) + ": coordinate");
     }
+  if (in.material) checkMaterial(*in.material);
   requireLength(in.topZ, "top_z");
   requireLength(in.safeZ, "safe_z");
   if (in.floor.surface.kind == Floor::Kind::Flat) requireLength(in.floor.surface.z, "floor.z");

@@ -22,6 +22,8 @@ constexpr double kMaxToolDiameter = 1000.0;
 constexpr int kMaxToolId = 1000000;
 // Boundary and island vertices together.
 constexpr size_t kMaxVertices = 1000000;
+// Cells of the material before the operation ("material"): 4 million (2000 x 2000).
+constexpr size_t kMaxMaterialCells = 4000000;
 // Boundaries with more vertices plan on walls simplified within at most
 // kMaxBoundaryTolerance mm, added to the radial allowance (region.hpp).
 constexpr size_t kPlanningVertices = 4000;

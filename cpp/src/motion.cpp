@@ -33,7 +33,7 @@ double cornerHeight(const Tool& t) { return cutterProfile(cutterOf(t), 0.5 * t.d
 
 }  // namespace
 
-HeightField stockOf(const std::vector<Tool>& tools, double topZ, const Region& region) {
+HeightField stockOf(const std::vector<Tool>& tools, const Material& material, const Region& region) {
   double rMin = 0.5 * tools.back().diameter, limit = rMin;
   for (const Tool& t : tools) {
     rMin = std::min(rMin, 0.5 * t.diameter);
@@ -41,11 +41,13 @@ HeightField stockOf(const std::vector<Tool>& tools, double topZ, const Region& r
   }
   const double rMax = 0.5 * tools.front().diameter;
   const Vec2 lo = region.minCorner() - Vec2{rMax, rMax}, hi = region.maxCorner() + Vec2{rMax, rMax};
-  return HeightField(lo, hi, heightFieldSpacing(lo, hi, rMin, limit), topZ);
+  HeightField stock(lo, hi, heightFieldSpacing(lo, hi, rMin, limit), material.topZ());
+  stock.lowerTo(material);
+  return stock;
 }
 
 std::vector<Plunge> splitIntoLevels(const std::vector<Plunge>& ordered, const MotionOptions& in, PlanStats& stats) {
-  Touched touched(in.tools.all().front().diameter, in.topZ);
+  Touched touched(in.tools.all().front().diameter, in.material);
   std::vector<Plunge> out;
   stats.levels = 1;
   forEachGroup(ordered, [&](size_t i, size_t j) {
@@ -125,8 +127,8 @@ struct Worst {
 class MotionPass {
  public:
   MotionPass(const Region& region, const DepthSolver& depths, const MotionOptions& in)
-      : region_(region), depths_(depths), in_(in), stock_(stockOf(in.tools.all(), in.topZ, region)),
-        touched_(in.tools.all().front().diameter, in.topZ) {
+      : region_(region), depths_(depths), in_(in), stock_(stockOf(in.tools.all(), in.material, region)),
+        touched_(in.tools.all().front().diameter, in.material) {
     over_.b = {"max_engagement", 0, 0, {}, 0, ""};
     thin_.b = {"min_engagement", 0, 0, {}, 0, ""};
     core_.b = {"core_diameter", 0, 0, {}, 0, ""};

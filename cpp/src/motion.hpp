@@ -30,7 +30,7 @@ namespace plunge {
 // What the machine's moves need of the job (PlanInput's fields of the same names).
 struct MotionOptions {
   ToolTable tools;  // largest first
-  double topZ = 0.0;
+  Material material{std::nullopt, 0.0};  // what the operations before left, up to top_z
   double safeZ = 5.0;
   double radialAllowance = 0.0;
   double floorAllowance = 0.0;
@@ -44,8 +44,8 @@ std::vector<Plunge> splitIntoLevels(const std::vector<Plunge>& ordered, const Mo
                                     PlanStats& stats);
 
 // The height field every simulation of a plan uses (bounds, spacing), for the
-// tools (largest first) in the region, uncut at topZ.
-HeightField stockOf(const std::vector<Tool>& tools, double topZ, const Region& region);
+// tools (largest first) in the region, uncut: the material before this operation.
+HeightField stockOf(const std::vector<Tool>& tools, const Material& material, const Region& region);
 
 // Fills every plunge's approachZ, retractZ, leadOut and engagement, counts the
 // plunges beyond a tool's limits (stats.overEngaged, thinCuts) and adds a

@@ -211,11 +211,11 @@ struct FloorStockMeasure {
 
 FloorStockMeasure measureFloorStock(const PlanInput& in, const ToolTable& tools, const Region& region,
                                     const FloorSurface& floor, const std::vector<Plunge>& plunges, double regionArea,
-                                    const Progress& progress) {
+                                    const Material& material, const Progress& progress) {
   StockGrid grid = stockGrid(in, region, floor, regionArea, 0.5 * tools.all().back().diameter, progress);
   for (const Plunge& p : plunges) grid.cut({{p.x, p.y}, p.toolId, p.z}, cutterOf(tools.byId(p.toolId)));
   FloorStockMeasure out;
-  out.report = measureStock(grid, in.topZ);
+  out.report = measureStock(grid, material);
   if (!isSculptured(in, floor)) return out;
   // The picture's map: at most about 160 x 160 cells, each the highest stock in it.
   StockMap m;
@@ -242,6 +242,7 @@ void reportFloorStock(const PlanInput& in, const FloorStockMeasure& m, Plan& out
   out.stats.meanFloorStock = r.meanFloorStock;
   out.stats.volumeRemoved = r.volumeRemoved;
   out.stats.volumeLeft = r.volumeLeft;
+  out.stats.volumeBefore = r.volumeBefore;
   if (m.map && in.floor.maxFloorStock > 0.0 && r.maxFloorStock > in.floor.maxFloorStock + 1e-6) {
     std::ostringstream w;
     w << std::fixed << std::setprecision(2) << "up to " << r.maxFloorStock
@@ -515,12 +516,26 @@ std::vector<CutDisk> placeAndDepth(const PlanInput& in, const ToolTable& tools, 
   return disks;
 }
 
-EngagementOptions engagementOptions(const PlanInput& in, const ToolTable& tools, const Progress& progress) {
+// Rest plunging: the plunges that would cut none of the material the
+// operations before left are taken out of `disks` and returned (with their
+// tools' shapes and depths, to be counted as cut).
+std::vector<Plunge> dropAirPlunges(const Material& material, const ToolTable& tools, std::vector<CutDisk>& disks) {
+  std::vector<Plunge> inAir;
+  if (!material.known()) return inAir;
+  auto air = [&](const CutDisk& d) { return !material.cutsAny(d.center, cutterOf(tools.byId(d.toolId)), d.z); };
+  for (const CutDisk& d : disks)
+    if (air(d)) inAir.push_back(plungeOf(tools.byId(d.toolId), d.center, d.z));
+  disks.erase(std::remove_if(disks.begin(), disks.end(), air), disks.end());
+  return inAir;
+}
+
+EngagementOptions engagementOptions(const PlanInput& in, const ToolTable& tools, const Material& material,
+                                    const Progress& progress) {
   EngagementOptions o;
   o.tools = tools;
+  o.material = material;
   o.radialAllowance = in.radialAllowance;
   o.floorAllowance = in.floorAllowance;
-  o.topZ = in.topZ;
   o.maxWallStock = in.covering.maxWallStock;
   o.maxFloorStock = in.floor.maxFloorStock;
   o.start = in.motion.start;
@@ -529,10 +544,11 @@ EngagementOptions engagementOptions(const PlanInput& in, const ToolTable& tools,
   return o;
 }
 
-MotionOptions motionOptions(const PlanInput& in, const ToolTable& tools, const Progress& progress) {
+MotionOptions motionOptions(const PlanInput& in, const ToolTable& tools, const Material& material,
+                            const Progress& progress) {
   MotionOptions o;
   o.tools = tools;
-  o.topZ = in.topZ;
+  o.material = material;
   o.safeZ = in.safeZ;
   o.radialAllowance = in.radialAllowance;
   o.floorAllowance = in.floorAllowance;
@@ -604,6 +620,7 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   // The job's tools, once (pocketOf leaves out those that fit nowhere): every
   // stage from here on knows a tool by its id.
   const ToolTable tools(in.tools);
+  const Material material(in.material, in.topZ);  // what the operations before left
   // The floor: flat, an expression or BREP faces (read before the long part).
   const std::unique_ptr<FloorSurface> floor = makeFloor(in);
   const Vec2 lo = pocket.region.minCorner(), hi = pocket.region.maxCorner();
@@ -611,7 +628,9 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   const DepthSolver depths(*floor, lo, hi, std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)),
                            progress);
   bool held = false;
-  const std::vector<CutDisk> disks = placeAndDepth(in, tools, pocket, *floor, depths, std::move(placed), out, held, progress);
+  std::vector<CutDisk> disks = placeAndDepth(in, tools, pocket, *floor, depths, std::move(placed), out, held, progress);
+  const std::vector<Plunge> inAir = dropAirPlunges(material, tools, disks);
+  out.stats.airPlunges = static_cast<int>(inAir.size());
 
   progress.stage(0.9, "ordering the plunges");
   sequence(in, tools, disks, out, progress);
@@ -621,10 +640,10 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
                                    [](const Tool& t) { return std::isfinite(engagementLimit(t)); });
   if (limited) {
     progress.stage(0.92, "growing the cut within the engagement limits");
-    HeightField stock = stockOf(in.tools, in.topZ, pocket.region);
-    out.plunges = growWithinLimits(pocket.region, depths, out.plunges, stock, engagementOptions(in, tools, progress));
+    HeightField stock = stockOf(in.tools, material, pocket.region);
+    out.plunges = growWithinLimits(pocket.region, depths, out.plunges, stock, engagementOptions(in, tools, material, progress));
   }
-  MotionOptions motion = motionOptions(in, tools, progress);
+  MotionOptions motion = motionOptions(in, tools, material, progress);
   out.plunges = splitIntoLevels(out.plunges, motion, out.stats);
   // Measured on the final plunges (the rest step and the limits add to the
   // covering's), on another thread with its own floor while the motion is
@@ -634,9 +653,12 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
     CoverResult cover;
     FloorStockMeasure stock;
   };
-  auto measuring = std::async(std::launch::async, [&, plunges = out.plunges, own = floor->clone()] {
+  // The plunges left out in air count as cut: the material is gone there.
+  std::vector<Plunge> cutting = out.plunges;
+  cutting.insert(cutting.end(), inAir.begin(), inAir.end());
+  auto measuring = std::async(std::launch::async, [&, plunges = std::move(cutting), own = floor->clone()] {
     return Measures{coverOf(plunges, out.accessible, pocket.core),
-                    measureFloorStock(in, tools, pocket.region, *own, plunges, out.stats.regionArea, progress)};
+                    measureFloorStock(in, tools, pocket.region, *own, plunges, out.stats.regionArea, material, progress)};
   });
   progress.stage(0.95, "heights and lead-outs");
   motion.progress = progress.sub(0.95, 0.98);

@@ -340,17 +340,18 @@ RestResult restInZ(const Region& region, const DepthSolver& depths, const ToolTa
   return RestStep(region, depths, tools, grid, opt).run();
 }
 
-StockReport measureStock(const StockGrid& grid, double topZ) {
+StockReport measureStock(const StockGrid& grid, const Material& material) {
   StockReport r;
   const double cell = grid.spacing() * grid.spacing();
   size_t n = 0;
   double sum = 0.0, pocket = 0.0;
   for (size_t k = 0; k < grid.size(); ++k) {
     if (!grid.valid(k)) continue;
-    pocket += std::max(0.0, topZ - grid.floorAt(k)) * cell;
+    const double top = material.at(grid.at(k));
+    pocket += std::max(0.0, top - grid.floorAt(k)) * cell;
     const double s = grid.stock(k);
     if (std::isnan(s)) continue;
-    r.volumeRemoved += std::max(0.0, topZ - std::max(grid.cutAt(k), grid.floorAt(k))) * cell;
+    r.volumeRemoved += std::max(0.0, top - std::max(grid.cutAt(k), grid.floorAt(k))) * cell;
     if (!grid.inCore(k)) continue;  // the wall band's material, not the floor's
     if (s > r.maxFloorStock) {
       r.maxFloorStock = s;
@@ -360,6 +361,7 @@ StockReport measureStock(const StockGrid& grid, double topZ) {
     ++n;
   }
   r.meanFloorStock = n ? sum / n : 0.0;
+  r.volumeBefore = pocket;
   r.volumeLeft = std::max(0.0, pocket - r.volumeRemoved);
   return r;
 }

@@ -17,6 +17,7 @@
 
 #include "depth.hpp"
 #include "floor.hpp"
+#include "material.hpp"
 #include "plunge/progress.hpp"
 #include "region.hpp"
 #include "plunge/tools.hpp"
@@ -138,10 +139,13 @@ struct StockReport {
   double maxFloorStock = 0.0;   // over cut samples of the core
   Vec2 maxFloorStockAt;         // where it is
   double meanFloorStock = 0.0;  // over cut samples of the core
-  double volumeRemoved = 0.0;   // mm^3, top of stock down to the cuts
-  double volumeLeft = 0.0;      // mm^3, the pocket (to floor + allowance) minus what is removed
+  double volumeBefore = 0.0;    // mm^3, the pocket: the material before this operation, down to floor + allowance
+  double volumeRemoved = 0.0;   // mm^3, that material down to the cuts
+  double volumeLeft = 0.0;      // mm^3, the pocket minus what is removed
 };
-StockReport measureStock(const StockGrid& grid, double topZ);
+// The pocket's volume is the material before this operation (material.hpp)
+// down to floor + allowance; what is removed, that material down to the cuts.
+StockReport measureStock(const StockGrid& grid, const Material& material);
 
 // The thickest material the uncovered polygons leave along the walls: their
 // farthest vertex from the walls, minus the radial allowance (0 if none).

@@ -71,6 +71,11 @@ bool Touched::grazes(Vec2 c, Vec2 end, double r, double bottom, double limit) co
 }
 
 double Touched::highestAlong(Vec2 a, Vec2 b, double r) const {
+  const double cut = highestCut(a, b, r);
+  return material_.known() ? std::min(cut, material_.highestAlong(a, b, r)) : cut;
+}
+
+double Touched::highestCut(Vec2 a, Vec2 b, double r) const {
   const Segment path{a, b};
   const Vec2 lo{std::min(a.x, b.x) - r, std::min(a.y, b.y) - r}, hi{std::max(a.x, b.x) + r, std::max(a.y, b.y) + r};
   std::vector<Circle> near;

@@ -4,6 +4,7 @@
 #include <map>
 #include <vector>
 
+#include "material.hpp"
 #include "plunge/geometry.hpp"
 
 namespace plunge {
@@ -18,7 +19,8 @@ namespace plunge {
 // margin, do not count. A move meeting more than 150 disks goes over top_z.
 class Touched {
  public:
-  Touched(double bucket, double top) : bucket_(bucket), top_(top) {}
+  // The stock before any disk: the material the operations before left.
+  Touched(double bucket, const Material& material) : bucket_(bucket), top_(material.topZ()), material_(material) {}
   void add(Vec2 c, double r, double bottom);
   // Centres of the disks at least `r` wide, cut no higher than `bottom`,
   // between `from` and `to` away from c, nearest first (at most `count`).
@@ -29,7 +31,8 @@ class Touched {
   // disks cut to `bottom` or deeper (polygons, nearest disks first; only the
   // crescent is clipped, so the booleans stay small).
   bool grazes(Vec2 c, Vec2 end, double r, double bottom, double limit) const;
-  // The highest stock a disk of radius r swept from a to b passes over (an upper bound).
+  // The highest stock a disk of radius r swept from a to b passes over (an
+  // upper bound; never above the material there).
   double highestAlong(Vec2 a, Vec2 b, double r) const;
 
  private:
@@ -44,7 +47,9 @@ class Touched {
   static bool clearOf(const std::vector<Circle>& near, Vec2 q);
   static bool uncoveredWitness(Vec2 a, Vec2 b, double rs, const std::vector<Circle>& near);
   long cellOf(double v) const;
+  double highestCut(Vec2 a, Vec2 b, double r) const;  // as if the stock stood at top_z before the disks
   double bucket_, top_;
+  Material material_;
   std::vector<Disk> disks_;
   std::map<long long, std::vector<size_t>> grid_;
 };

@@ -98,7 +98,7 @@ struct HandMadeBox {
   MotionOptions o = [] {
     MotionOptions m;
     m.tools = ToolTable({{20, 1, 150}});
-    m.topZ = 0;
+    m.material = Material(std::nullopt, 0);
     m.safeZ = 10;
     m.settings.leadOut = 1.0;
     return m;
@@ -118,14 +118,14 @@ TEST(Motion, OnItsOwnOptions) {
   plan.plunges = {plungeOf(o.tools.byId(1), {30, 30}, -20), plungeOf(o.tools.byId(1), {38, 30}, -20)};
   planMotion(region, depths, plan, o);
   const Plunge &a = plan.plunges[0], &b = plan.plunges[1];
-  EXPECT_DOUBLE_EQ(a.approachZ, o.topZ + o.settings.rapidClearance);  // uncut stock under the first
-  EXPECT_DOUBLE_EQ(a.retractZ, o.topZ + o.settings.rapidClearance);   // the stock along the move is top_z
-  EXPECT_DOUBLE_EQ(b.approachZ, o.topZ + o.settings.rapidClearance);  // part of its disk is still uncut
+  EXPECT_DOUBLE_EQ(a.approachZ, o.material.topZ() + o.settings.rapidClearance);  // uncut stock under the first
+  EXPECT_DOUBLE_EQ(a.retractZ, o.material.topZ() + o.settings.rapidClearance);   // the stock along the move is top_z
+  EXPECT_DOUBLE_EQ(b.approachZ, o.material.topZ() + o.settings.rapidClearance);  // part of its disk is still uncut
   ASSERT_TRUE(b.leadOut.has_value());
   EXPECT_NEAR(dist(*b.leadOut, {38, 30}), 1.0, 1e-9);
   EXPECT_LT(b.leadOut->x, 38.0);  // toward the first hole, the only cut space
   EXPECT_DOUBLE_EQ(b.retractZ, o.safeZ);  // the last plunge of its tool
-  EXPECT_NEAR(b.engagement, 8.0, 2 * stockOf(o.tools.all(), o.topZ, region).spacing());
+  EXPECT_NEAR(b.engagement, 8.0, 2 * stockOf(o.tools.all(), o.material, region).spacing());
   EXPECT_EQ(plan.stats.leadOuts + plan.stats.noLeadOutMaterial + plan.stats.noLeadOutWalls, 2);
   EXPECT_NEAR(plan.stats.travelLength, dist(a.leadOut ? *a.leadOut : Vec2{30, 30}, {38, 30}), 1e-9);
   EXPECT_EQ(plan.stats.estimatedMinutes, motionMinutes(plan, o, false));

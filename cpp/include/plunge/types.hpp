@@ -174,11 +174,26 @@ struct ToolChoice {
   SelectionOptions weights;  // "selection": {"weight_time", "weight_tools", "rise_factor"}
 };
 
+// The material before this operation, for rest plunging ("material" in the
+// plan input): the top of the material over a raster in the plan's
+// coordinates, each cell holding the highest material over its square. Cell
+// (i, j) is the square from origin + (i, j) spacing to origin + (i + 1, j + 1)
+// spacing; `top` is row-major (i fastest, nx * ny values). Beyond the raster,
+// and wherever it is higher, the material stands at top_z. Absent: the stock
+// is solid up to top_z everywhere.
+struct MaterialGrid {
+  Vec2 origin;
+  double spacing = 0.0;
+  size_t nx = 0, ny = 0;
+  std::vector<double> top;
+};
+
 struct PlanInput {
   // The job every stage reads: the pocket, its heights and allowances.
   Loop boundary;
   std::vector<Loop> islands;
   double topZ = 0.0;
+  std::optional<MaterialGrid> material;  // what the operations before left (material.hpp)
   double safeZ = 5.0;
   double radialAllowance = 0.0;
   double floorAllowance = 0.0;
@@ -255,6 +270,11 @@ struct PlanStats {
   double meanFloorStock = 0.0;
   double volumeRemoved = 0.0;  // mm^3
   double volumeLeft = 0.0;     // mm^3: the pocket down to floor + allowance, minus what is removed
+  // With "material": what the operations before left in the pocket (down to
+  // floor + allowance), and the plunges the covering placed that would have cut
+  // none of it (not made; their disks count as covered).
+  double volumeBefore = 0.0;  // mm^3
+  int airPlunges = 0;
   int restPlunges = 0;         // plunges of the plan the rest step in Z added (a limited tool's growth replaces them)
   // Real plunge mills (engagement.hpp, motion.hpp).
   int startHoles = 0;           // start holes drilled for non-centre-cutting plungers

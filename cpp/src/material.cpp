@@ -1,0 +1,85 @@
+#include "material.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "depth.hpp"
+
+namespace plunge {
+
+Material::Material(const std::optional<MaterialGrid>& grid, double topZ)
+    : grid_(grid ? std::make_shared<const MaterialGrid>(*grid) : nullptr), top_(topZ) {}
+
+double Material::cell(long i, long j) const {
+  const MaterialGrid& g = *grid_;
+  if (i < 0 || j < 0 || i >= static_cast<long>(g.nx) || j >= static_cast<long>(g.ny)) return top_;
+  return std::min(top_, g.top[static_cast<size_t>(j) * g.nx + static_cast<size_t>(i)]);
+}
+
+void Material::range(Vec2 lo, Vec2 hi, long& i0, long& i1, long& j0, long& j1) const {
+  const MaterialGrid& g = *grid_;
+  auto index = [&](double v, double o, size_t n) {
+    return std::clamp(static_cast<long>(std::floor((v - o) / g.spacing)), -1L, static_cast<long>(n));
+  };
+  i0 = index(lo.x, g.origin.x, g.nx);
+  i1 = index(hi.x, g.origin.x, g.nx);
+  j0 = index(lo.y, g.origin.y, g.ny);
+  j1 = index(hi.y, g.origin.y, g.ny);
+}
+
+double Material::at(Vec2 p) const {
+  if (!grid_) return top_;
+  long i0, i1, j0, j1;
+  range(p, p, i0, i1, j0, j1);
+  return cell(i0, j0);
+}
+
+double Material::highestIn(Vec2 lo, Vec2 hi) const {
+  if (!grid_) return top_;
+  long i0, i1, j0, j1;
+  range(lo, hi, i0, i1, j0, j1);
+  double h = -std::numeric_limits<double>::infinity();
+  for (long j = j0; j <= j1; ++j)
+    for (long i = i0; i <= i1; ++i) h = std::max(h, cell(i, j));
+  return h;
+}
+
+double Material::highestAlong(Vec2 a, Vec2 b, double r) const {
+  if (!grid_) return top_;
+  const MaterialGrid& g = *grid_;
+  const Segment path{a, b};
+  // A cell meets the swept disk if its centre is within r + half its diagonal.
+  const double reach = r + g.spacing * std::sqrt(0.5);
+  long i0, i1, j0, j1;
+  range({std::min(a.x, b.x) - r, std::min(a.y, b.y) - r}, {std::max(a.x, b.x) + r, std::max(a.y, b.y) + r}, i0, i1,
+        j0, j1);
+  double h = -std::numeric_limits<double>::infinity();
+  for (long j = j0; j <= j1; ++j)
+    for (long i = i0; i <= i1; ++i) {
+      const double v = cell(i, j);
+      if (v <= h) continue;
+      const Vec2 centre{g.origin.x + (i + 0.5) * g.spacing, g.origin.y + (j + 0.5) * g.spacing};
+      if (distanceToSegment(path, centre) <= reach) h = v;
+    }
+  return h;
+}
+
+bool Material::cutsAny(Vec2 c, const Cutter& cutter, double z) const {
+  if (!grid_) return z < top_ - kAirTolerance;
+  const MaterialGrid& g = *grid_;
+  const double halfDiagonal = g.spacing * std::sqrt(0.5);
+  long i0, i1, j0, j1;
+  range(c - Vec2{cutter.radius, cutter.radius}, c + Vec2{cutter.radius, cutter.radius}, i0, i1, j0, j1);
+  for (long j = j0; j <= j1; ++j)
+    for (long i = i0; i <= i1; ++i) {
+      const double v = cell(i, j);
+      if (v <= z + kAirTolerance) continue;  // the profile is never below the tip
+      const Vec2 centre{g.origin.x + (i + 0.5) * g.spacing, g.origin.y + (j + 0.5) * g.spacing};
+      const double rho = dist(centre, c) - halfDiagonal;  // the cell's nearest point, at most
+      if (rho <= cutter.radius && v > z + cutterProfile(cutter, std::max(0.0, rho)) + kAirTolerance) return true;
+    }
+  return false;
+}
+
+}  // namespace plunge
