@@ -261,13 +261,12 @@ UPSTREAM_BUGS = {
     "panel": [("PathOpGui.py", "in setEdit", "toolbox.addItem(page.form",
                "Internal C++ object (PySide2.QtWidgets.QWidget) already deleted.")],
     # FreeCAD 1.0's OpenGL simulator (SimulatorGL.CAMSimulation.Activate) now
-    # and then finds its panel's accuracy slider wrapped as another widget (a
-    # QDialog: the voxel simulator's task form, closed just before, whose
-    # wrapper FreeCAD's voxel simulator keeps): the same PySide2 stale-wrapper
-    # family, all in FreeCAD's code. No panel opens; the user runs the command
-    # again, and so does play_gl_simulator, once.
-    "simulator": [("SimulatorGL.py", "in onAccuracyBarChange", "form.sliderAccuracy",
-                   "object has no attribute")],
+    # and then finds a widget of its panel (its accuracy slider, its list of
+    # operations) wrapped as another (a QDialog: the voxel simulator's task
+    # form, closed just before, whose wrapper FreeCAD's voxel simulator keeps):
+    # the same PySide2 stale-wrapper family, all in FreeCAD's code. No panel
+    # opens; the user runs the command again, and so does play_gl_simulator, once.
+    "simulator": [("SimulatorGL.py", "in Activate", "form.", "'PySide2.QtWidgets.", "object has no attribute")],
     "spin box filter": [("in eventFilter", "if event.type() == QtCore.QEvent.Type.FocusIn",
                          "QtWidgets.QWidget' object has no attribute 'type'")],
 }
