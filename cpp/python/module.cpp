@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <array>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -15,6 +16,7 @@
 #include "plunge/tools.hpp"
 #include "plunge/optimizer.hpp"
 #include "plunge/plan.hpp"
+#include "plunge/rest.hpp"
 #include "plunge/sequencing.hpp"
 
 namespace py = pybind11;
@@ -124,6 +126,28 @@ py::dict startHoleTools(const py::object& tools) {
   return out;
 }
 
+// The material left after `tool` moves along `moves` (rest.hpp): the grid as
+// in the input's "material", the tool as in its "tools", moves (x0, y0, z0,
+// x1, y1, z1); returns the grid's new "top".
+std::vector<double> sweepPy(const py::dict& material, const py::object& tool,
+                            const std::vector<std::array<double, 6>>& moves, const py::object& progress) {
+  const plunge::Tool t = plunge::toolsFromJson(json::array({toJson(tool, "tool")}).dump()).front();
+  const auto origin = material["origin"].cast<std::pair<double, double>>();
+  plunge::MaterialGrid grid;
+  grid.origin = {origin.first, origin.second};
+  grid.spacing = material["spacing"].cast<double>();
+  grid.nx = material["nx"].cast<size_t>();
+  grid.ny = material["ny"].cast<size_t>();
+  grid.top = material["top"].cast<std::vector<double>>();
+  std::vector<plunge::Move> ms;
+  ms.reserve(moves.size());
+  for (const auto& m : moves) ms.push_back({m[0], m[1], m[2], m[3], m[4], m[5]});
+  const plunge::Progress reporter = progressOf(progress);
+  py::gil_scoped_release release;
+  plunge::sweep(grid, plunge::cutterOf(t), ms, reporter);
+  return std::move(grid.top);
+}
+
 std::vector<int> tourOf(const std::vector<std::pair<double, double>>& points, bool closed,
                         std::optional<std::pair<double, double>> start, const std::string& method,
                         std::uint64_t seed) {
@@ -176,6 +200,10 @@ PYBIND11_MODULE(plunge, m) {
   m.def("start_hole_tools", &startHoleTools, py::arg("tools"),
         "The drill of each tool that does not cut at its centre, as the planner chooses it: "
         "{tool id: drill id} for tools given as in the input's \"tools\"; ValueError when one has none.");
+  m.def("sweep", &sweepPy, py::arg("material"), py::arg("tool"), py::arg("moves"), py::arg("progress") = py::none(),
+        "Rest plunging: the material's new \"top\" after the tool (as in the input's \"tools\") moves along moves "
+        "[(x0, y0, z0, x1, y1, z1)] over material (as in the input's \"material\"). Each cell is lowered only where "
+        "the tool's surface reaches all of it: an upper bound of the material left.");
   py::class_<plunge::OptimizeResult>(m, "Result", "Global optimum found by plunge.optimize")
       .def_property_readonly("x", [](const plunge::OptimizeResult& r) { return asTuple(r.x); })
       .def_readonly("value", &plunge::OptimizeResult::value)

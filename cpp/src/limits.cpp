@@ -32,6 +32,9 @@ void checkMaterial(const MaterialGrid& g) {
   if (g.nx * g.ny > kMaxMaterialCells)
     throw Error("material: " + std::to_string(g.nx) + " x " + std::to_string(g.ny) + " cells, more than " +
                 std::to_string(kMaxMaterialCells) + ": a coarser spacing");
+  if (g.nx == 0 || g.ny == 0 || g.top.size() != g.nx * g.ny)
+    throw Error("material.top: " + std::to_string(g.top.size()) + " heights for " + std::to_string(g.nx) + " x " +
+                std::to_string(g.ny) + " cells");
   requireLength(g.origin.x, "material.origin");
   requireLength(g.origin.y, "material.origin");
   if (!(g.spacing > 0.0) || g.spacing * static_cast<double>(std::max(g.nx, g.ny)) > 2 * kMaxLength)
