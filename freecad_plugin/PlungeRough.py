@@ -18,7 +18,7 @@ import FreeCAD
 import Part
 from PySide.QtCore import QT_TRANSLATE_NOOP
 
-from freecad_plugin import companions, geometry, planner, tools
+from freecad_plugin import companions, geometry, planner, rest, tools
 from freecad_plugin.compat import PathFeedRate, PathJob, PathOp, PathUtils
 
 __title__ = "Plunge Rough operation"
@@ -170,6 +170,17 @@ class ObjectPlungeRough(PathOp.ObjectOp):
                  "Packing and covering (default), or a regular grid of plunges (the baseline CAM systems offer)")
             obj.Strategy = list(STRATEGIES)
             obj.Strategy = "Packing"
+        if not hasattr(obj, "RestFrom"):
+            _add(obj, "App::PropertyEnumeration", "RestFrom",
+                 "The material the plunges start from: the Job's stock less what the enabled operations before this "
+                 "one cut (their paths replayed), the Job's stock solid alone, or none (solid stock from the start "
+                 "depth down)")
+            obj.RestFrom = list(rest.REST_FROM)
+            obj.RestFrom = rest.STOCK
+        _add(obj, "App::PropertyLength", "RestResolution",
+             "Cell size of the material model (Rest From): a rest narrower than about two cells at the edge of "
+             "what the operations before cut is not seen; 0: a 64th of the smallest plunger's diameter, at least "
+             "0.2 mm", 0.0)
         _add(obj, "App::PropertyString", "Summary", "The last plan: plunges per tool, coverage, travel, time",
              "", mode=1)
         _add(obj, "App::PropertyString", "PlanData", "The last plan and its input (JSON), read by the companions",
@@ -179,10 +190,14 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         # Files from older versions lack newer properties, and their companions
         # have labels with parentheses (nested comments in G-code). A file from
         # before the tool choice existed used every plunger: it still does.
+        # One from before rest plunging planned for solid stock from its start depth.
         chose = hasattr(obj, "AutoSelectTools")
+        rested = hasattr(obj, "RestFrom")
         self._addProperties(obj)
         if not chose:
             obj.AutoSelectTools = False
+        if not rested:
+            obj.RestFrom = rest.NONE
         for comp in companions.companions(obj):
             label = companions.companion_label(obj, comp.ToolController, bool(getattr(comp, "StartHoles", False)))
             if comp.ToolController is not None and comp.Label != label:
@@ -198,6 +213,8 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         elif obj.ToolController and not obj.ToolControllers:
             obj.ToolControllers = [obj.ToolController]
         companions.syncCompanions(obj)  # the proxy is not attached yet: opOnChanged does not run
+        # Rest plunging after whatever the Job already does to the stock.
+        obj.RestFrom = rest.PREVIOUS if rest.earlier(obj, job) else rest.STOCK
 
     def opUpdateDepths(self, obj):
         # FreeCAD takes the highest of the selected faces' bottoms; a pocket with
@@ -368,6 +385,14 @@ def build_input(obj, tcs, faces, workdir, notes=None):
     }
     if sections:
         data["sections"] = sections
+    xs = [p[0] for p in pocket.boundary]
+    ys = [p[1] for p in pocket.boundary]
+    material, rest_notes = rest.material(obj, PathUtils.findParentJob(obj), tcs, ((min(xs), min(ys)), (max(xs), max(ys))),
+                                         obj.StartDepth.Value)
+    if material is not None:
+        data["material"] = material
+    if notes is not None:
+        notes.extend(rest_notes)
     if obj.DwellTime > 0 and not obj.UseCannedCycle:
         data["peck_dwell"] = obj.DwellTime
     if obj.PeckDepth.Value > 0:

@@ -202,8 +202,8 @@ PYBIND11_MODULE(plunge, m) {
         "{tool id: drill id} for tools given as in the input's \"tools\"; ValueError when one has none.");
   m.def("sweep", &sweepPy, py::arg("material"), py::arg("tool"), py::arg("moves"), py::arg("progress") = py::none(),
         "Rest plunging: the material's new \"top\" after the tool (as in the input's \"tools\") moves along moves "
-        "[(x0, y0, z0, x1, y1, z1)] over material (as in the input's \"material\"). Each cell is lowered only where "
-        "the tool's surface reaches all of it: an upper bound of the material left.");
+        "[(x0, y0, z0, x1, y1, z1)] over material (as in the input's \"material\"): each cell lowered to the tool's "
+        "surface over its centre.");
   py::class_<plunge::OptimizeResult>(m, "Result", "Global optimum found by plunge.optimize")
       .def_property_readonly("x", [](const plunge::OptimizeResult& r) { return asTuple(r.x); })
       .def_readonly("value", &plunge::OptimizeResult::value)

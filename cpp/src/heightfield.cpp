@@ -16,9 +16,10 @@ void HeightField::lowerTo(const Material& material) {
   if (!material.known()) return;
   for (long j = 0; j < ny_; ++j)
     for (long i = 0; i < nx_; ++i) {
-      const Vec2 lo{lo_.x + i * h_, lo_.y + j * h_};
+      // Sampled at the centre, as the plunges cut it (the material's edges
+      // are already taken in by its resolution, material.hpp).
       float& cell = z_[j * nx_ + i];
-      cell = std::min(cell, static_cast<float>(material.highestIn(lo, lo + Vec2{h_, h_})));
+      cell = std::min(cell, static_cast<float>(material.at(centre(i, j))));
     }
 }
 

@@ -25,8 +25,8 @@ class HeightField {
   // Outside [lo, hi] (beyond the walls) the stock is topZ.
   HeightField(Vec2 lo, Vec2 hi, double spacing, double topZ);
 
-  // Lowers every cell to the material the operations before left over its
-  // square (the highest of it: material.hpp).
+  // Lowers every cell to the material the operations before left at its
+  // centre (material.hpp), as the plunges' cuts are sampled.
   void lowerTo(const Material& material);
   // Removes what a plunge of `cutter` with its tip at z cuts.
   void cut(Vec2 c, const Cutter& cutter, double z);

@@ -190,7 +190,7 @@ MaterialGrid readMaterial(const json& j) {
   g.origin = point(j["origin"], "material.origin");
   g.spacing = number(j["spacing"], "material.spacing");
   for (const auto& [key, n] : {std::pair{"nx", &g.nx}, std::pair{"ny", &g.ny}}) {
-    if (!j[key].is_number_unsigned() || j[key].get<unsigned long long>() == 0)
+    if (!j[key].is_number_integer() || j[key].get<long long>() <= 0)
       throw Error(std::string("material.") + key + ": expected a positive whole number of cells");
     *n = j[key].get<size_t>();
   }
@@ -419,6 +419,7 @@ json planToValue(const Plan& plan) {
                   {"volume_left", s.volumeLeft},
                   {"volume_before", s.volumeBefore},
                   {"air_plunges", s.airPlunges},
+                  {"rest_material", s.restMaterial},
                   {"rest_plunges", s.restPlunges},
                   {"start_holes", s.startHoles},
                   {"over_engaged", s.overEngaged},

@@ -17,6 +17,11 @@ double Material::cell(long i, long j) const {
   return std::min(top_, g.top[static_cast<size_t>(j) * g.nx + static_cast<size_t>(i)]);
 }
 
+Vec2 Material::centre(long i, long j) const {
+  const MaterialGrid& g = *grid_;
+  return {g.origin.x + (static_cast<double>(i) + 0.5) * g.spacing, g.origin.y + (static_cast<double>(j) + 0.5) * g.spacing};
+}
+
 void Material::range(Vec2 lo, Vec2 hi, long& i0, long& i1, long& j0, long& j1) const {
   const MaterialGrid& g = *grid_;
   auto index = [&](double v, double o, size_t n) {
@@ -35,49 +40,35 @@ double Material::at(Vec2 p) const {
   return cell(i0, j0);
 }
 
-double Material::highestIn(Vec2 lo, Vec2 hi) const {
-  if (!grid_) return top_;
-  long i0, i1, j0, j1;
-  range(lo, hi, i0, i1, j0, j1);
-  double h = -std::numeric_limits<double>::infinity();
-  for (long j = j0; j <= j1; ++j)
-    for (long i = i0; i <= i1; ++i) h = std::max(h, cell(i, j));
-  return h;
-}
-
 double Material::highestAlong(Vec2 a, Vec2 b, double r) const {
   if (!grid_) return top_;
-  const MaterialGrid& g = *grid_;
   const Segment path{a, b};
-  // A cell meets the swept disk if its centre is within r + half its diagonal.
-  const double reach = r + g.spacing * std::sqrt(0.5);
+  const double reach = r - kRimTolerance;
   long i0, i1, j0, j1;
   range({std::min(a.x, b.x) - r, std::min(a.y, b.y) - r}, {std::max(a.x, b.x) + r, std::max(a.y, b.y) + r}, i0, i1,
         j0, j1);
+  // Beyond the raster (index -1 or n) the material is top_z: the range
+  // reaching there says so.
   double h = -std::numeric_limits<double>::infinity();
   for (long j = j0; j <= j1; ++j)
     for (long i = i0; i <= i1; ++i) {
       const double v = cell(i, j);
-      if (v <= h) continue;
-      const Vec2 centre{g.origin.x + (i + 0.5) * g.spacing, g.origin.y + (j + 0.5) * g.spacing};
-      if (distanceToSegment(path, centre) <= reach) h = v;
+      if (v > h && distanceToSegment(path, centre(i, j)) <= reach) h = v;
     }
   return h;
 }
 
 bool Material::cutsAny(Vec2 c, const Cutter& cutter, double z) const {
   if (!grid_) return z < top_ - kAirTolerance;
-  const MaterialGrid& g = *grid_;
-  const double halfDiagonal = g.spacing * std::sqrt(0.5);
+  const double reach = cutter.radius + 0.5 * grid_->spacing;
   long i0, i1, j0, j1;
-  range(c - Vec2{cutter.radius, cutter.radius}, c + Vec2{cutter.radius, cutter.radius}, i0, i1, j0, j1);
+  range(c - Vec2{reach, reach}, c + Vec2{reach, reach}, i0, i1, j0, j1);
   for (long j = j0; j <= j1; ++j)
     for (long i = i0; i <= i1; ++i) {
       const double v = cell(i, j);
       if (v <= z + kAirTolerance) continue;  // the profile is never below the tip
-      const Vec2 centre{g.origin.x + (i + 0.5) * g.spacing, g.origin.y + (j + 0.5) * g.spacing};
-      const double rho = dist(centre, c) - halfDiagonal;  // the cell's nearest point, at most
-      if (rho <= cutter.radius && v > z + cutterProfile(cutter, std::max(0.0, rho)) + kAirTolerance) return true;
+      const double rho = dist(centre(i, j), c);
+      if (rho <= reach && v > z + cutterProfile(cutter, std::min(rho, cutter.radius)) + kAirTolerance) return true;
     }
   return false;
 }

@@ -1,9 +1,11 @@
 // The material before this operation (rest plunging): what the Job's stock and
 // the operations before this one left, as MaterialGrid (types.hpp), asked the
-// way the plan needs it. Every answer is an upper bound of the material (a
-// cell counts wherever its square meets the asked disk), never above top_z, so
-// no plunge is dropped and no rapid is lowered where material may stand.
-// Without a grid the material is the full stock: top_z everywhere.
+// way the plan needs it. The grid holds the material at each cell's centre (as
+// the plan's own height fields do, heightfield.hpp); a disk is asked about the
+// centres inside it. So a plunge whose rim follows the edge an earlier tool
+// cut (the same allowance) sees no material there, and a rest narrower than
+// the grid's spacing may go unseen (the resolution). Without a grid the
+// material is the full stock: top_z everywhere.
 #pragma once
 #include <memory>
 #include <optional>
@@ -16,6 +18,9 @@ namespace plunge {
 // A plunge is in air when no material stands more than this above its cutter's
 // surface (mm): the float noise of a grid made by replaying paths.
 constexpr double kAirTolerance = 0.01;
+// A centre this close to a disk's rim is outside it (mm): an earlier tool's
+// edge and a plunge's rim at the same offset differ by the paths' accuracy.
+constexpr double kRimTolerance = 0.01;
 
 class Material {
  public:
@@ -26,18 +31,18 @@ class Material {
   double topZ() const { return top_; }
   // The material at p (its cell's), top_z beyond the raster.
   double at(Vec2 p) const;
-  // Highest material over the cells whose squares meet the disk of radius r
-  // swept from a to b (at c: not swept).
+  // Highest material at the centres inside the disk of radius r swept from a
+  // to b (at c: not swept); top_z where the disk leaves the raster.
   double highestAlong(Vec2 a, Vec2 b, double r) const;
   double highest(Vec2 c, double r) const { return highestAlong(c, c, r); }
-  // Highest material over the cells meeting the box [lo, hi].
-  double highestIn(Vec2 lo, Vec2 hi) const;
   // Whether a cutter at c with its tip at z would cut material standing more
-  // than kAirTolerance above its surface (the surface's lowest over each cell).
+  // than kAirTolerance above its surface, at a centre up to half a cell beyond
+  // its rim (a plunge is rather made than left out).
   bool cutsAny(Vec2 c, const Cutter& cutter, double z) const;
 
  private:
   double cell(long i, long j) const;  // top_z beyond the raster
+  Vec2 centre(long i, long j) const;
   // The cells' index range meeting [lo, hi] (clamped to one beyond the raster).
   void range(Vec2 lo, Vec2 hi, long& i0, long& i1, long& j0, long& j1) const;
 

@@ -631,6 +631,7 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   std::vector<CutDisk> disks = placeAndDepth(in, tools, pocket, *floor, depths, std::move(placed), out, held, progress);
   const std::vector<Plunge> inAir = dropAirPlunges(material, tools, disks);
   out.stats.airPlunges = static_cast<int>(inAir.size());
+  out.stats.restMaterial = material.known();
 
   progress.stage(0.9, "ordering the plunges");
   sequence(in, tools, disks, out, progress);

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "depth.hpp"
+#include "material.hpp"
 #include "plunge/error.hpp"
 #include "plunge/geometry.hpp"
 
@@ -22,18 +23,16 @@ MaterialGrid materialGrid(Vec2 origin, double spacing, size_t nx, size_t ny, dou
 
 namespace {
 
-// The lowest tip height along a move at which the cutter's surface still
-// reaches the whole of a cell: for a point p at distance rho(t) from the axis,
-// z(t) + profile(rho(t) + half the cell's diagonal). A flat cutter is exact
-// (z is linear in t: the lowest is at an end of the interval where the cell is
-// under it); ball and bull noses are sampled finely along that interval.
+// The lowest tip height along a move at which the cutter's surface passes
+// over a cell's centre p: z(t) + profile(rho(t)) where the axis passes within
+// the radius (plus kRimTolerance: the same edge cut by two paths at the same
+// offset differs by their accuracy). A flat cutter is exact (z is linear in
+// t: the lowest is at an end of the interval where p is under it); ball and
+// bull noses are sampled finely along that interval.
 class CellCut {
  public:
-  CellCut(const Cutter& cutter, double halfDiagonal) : cutter_(cutter), hd_(halfDiagonal) {
-    reach_ = cutter.radius - hd_;
-  }
-  // Tip height to lower the cell centred at p to, or +inf if the move does not
-  // reach the whole cell.
+  explicit CellCut(const Cutter& cutter) : cutter_(cutter), reach_(cutter.radius + kRimTolerance) {}
+  // Tip height to lower the cell to, or +inf where the move passes beside it.
   double lowest(const Move& m, Vec2 p, double step) const {
     const Vec2 a{m.x0, m.y0}, d{m.x1 - m.x0, m.y1 - m.y0};
     const double len2 = dot(d, d);
@@ -50,8 +49,8 @@ class CellCut {
     double best = kNone;
     for (int k = 0; k <= n; ++k) {
       const double t = t0 + (t1 - t0) * k / n;
-      const double rho = dist(a + d * t, p) + hd_;
-      if (rho <= cutter_.radius) best = std::min(best, z(t) + cutterProfile(cutter_, rho));
+      const double rho = std::min(dist(a + d * t, p), cutter_.radius);
+      best = std::min(best, z(t) + cutterProfile(cutter_, rho));
     }
     return best;
   }
@@ -63,9 +62,9 @@ class CellCut {
   bool interval(Vec2 a, Vec2 d, double len2, Vec2 p, double& t0, double& t1) const {
     const Vec2 w = p - a;
     const double tc = dot(w, d) / len2;
-    const double off2 = dot(w, w) - tc * tc * len2;  // squared distance from the line
+    const double off2 = std::max(0.0, dot(w, w) - tc * tc * len2);  // squared distance from the line
     const double r2 = reach_ * reach_ - off2;
-    if (reach_ < 0.0 || r2 < 0.0) return false;
+    if (r2 < 0.0) return false;
     const double half = std::sqrt(r2 / len2);
     t0 = std::max(0.0, tc - half);
     t1 = std::min(1.0, tc + half);
@@ -73,7 +72,7 @@ class CellCut {
   }
 
   Cutter cutter_;
-  double hd_, reach_ = 0.0;
+  double reach_;
 };
 
 void checkMove(const Move& m) {
@@ -86,8 +85,7 @@ void checkMove(const Move& m) {
 void sweep(MaterialGrid& g, const Cutter& cutter, const std::vector<Move>& moves, const Progress& progress) {
   if (!(g.spacing > 0.0) || g.top.size() != g.nx * g.ny) throw Error("sweep: the grid is not nx * ny cells of a positive size");
   if (!(cutter.radius > 0.0)) throw Error("sweep: the cutter has no radius");
-  const double hd = g.spacing * std::sqrt(0.5);
-  const CellCut cut(cutter, hd);
+  const CellCut cut(cutter);
   const double step = 0.25 * g.spacing;
   auto index = [&](double v, double o, size_t n) {
     return std::clamp(static_cast<long>(std::floor((v - o) / g.spacing)), 0L, static_cast<long>(n) - 1);

@@ -17,6 +17,10 @@ std::string planSummary(const Plan& plan) {
     << std::setprecision(2) << "; stock left: walls up to " << st.maxWallStockLeft << " mm (" << 100 * st.coreCoverage
     << " % of the core cut), floor up to " << st.maxFloorStockLeft << " mm (mean " << st.meanFloorStock << " mm); "
     << std::setprecision(1) << st.volumeRemoved / 1000 << " cm3 removed, " << st.volumeLeft / 1000 << " cm3 left";
+  if (st.restMaterial)
+    s << "; rest plunging: " << st.volumeBefore / 1000 << " cm3 left by the operations before, "
+      << 100 * st.volumeRemoved / std::max(st.volumeBefore, 1e-9) << " % of it removed here"
+      << (st.airPlunges ? ", " + std::to_string(st.airPlunges) + " plunges in cleared space left out" : std::string());
   if (st.restPlunges) s << "; " << st.restPlunges << " plunges added for the floor stock";
   if (st.startHoles) s << "; " << st.startHoles << " start holes";
   if (st.peckedPlunges) s << "; " << st.peckedPlunges << " deep holes into solid pecked";

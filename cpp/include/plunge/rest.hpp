@@ -19,12 +19,10 @@ struct Move {
 // A grid of nx x ny cells of `spacing` from `origin`, every cell at `top`.
 MaterialGrid materialGrid(Vec2 origin, double spacing, size_t nx, size_t ny, double top);
 
-// Lowers each cell of `grid` to what `cutter` leaves of it moving along
-// `moves` in order (rapids too: the machine cuts whatever it meets). A cell is
-// lowered only to the highest point of the cutter's surface over its square,
-// so the grid stays an upper bound of the material: no plunge is later
-// dropped where material may stand. Throws plunge::Error on a move that is
-// not finite; `progress` may cancel.
+// Lowers each cell of `grid` to what `cutter` leaves at its centre moving
+// along `moves` in order (rapids too: the machine cuts whatever it meets), as
+// the plan reads the grid ("material" in docs/plan-format.md). Throws
+// plunge::Error on a move that is not finite; `progress` may cancel.
 void sweep(MaterialGrid& grid, const Cutter& cutter, const std::vector<Move>& moves,
            const Progress& progress = Progress());
 

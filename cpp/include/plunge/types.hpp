@@ -176,7 +176,7 @@ struct ToolChoice {
 
 // The material before this operation, for rest plunging ("material" in the
 // plan input): the top of the material over a raster in the plan's
-// coordinates, each cell holding the highest material over its square. Cell
+// coordinates, each cell holding the material at its centre. Cell
 // (i, j) is the square from origin + (i, j) spacing to origin + (i + 1, j + 1)
 // spacing; `top` is row-major (i fastest, nx * ny values). Beyond the raster,
 // and wherever it is higher, the material stands at top_z. Absent: the stock
@@ -275,6 +275,7 @@ struct PlanStats {
   // none of it (not made; their disks count as covered).
   double volumeBefore = 0.0;  // mm^3
   int airPlunges = 0;
+  bool restMaterial = false;  // planned from a "material" input
   int restPlunges = 0;         // plunges of the plan the rest step in Z added (a limited tool's growth replaces them)
   // Real plunge mills (engagement.hpp, motion.hpp).
   int startHoles = 0;           // start holes drilled for non-centre-cutting plungers
