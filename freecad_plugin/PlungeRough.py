@@ -181,6 +181,11 @@ class ObjectPlungeRough(PathOp.ObjectOp):
              "Cell size of the material model (Rest From): a rest narrower than about two cells at the edge of "
              "what the operations before cut is not seen; 0: a 64th of the smallest plunger's diameter, at least "
              "0.2 mm", 0.0)
+        # A plain link list, hidden in the editor: FreeCAD's hidden links do not
+        # order the recompute.
+        _add(obj, "App::PropertyLinkList", "RestSources",
+             "The operations before this one whose paths the plan started from (Rest From): this operation plans "
+             "again after they change", mode=2)
         _add(obj, "App::PropertyString", "Summary", "The last plan: plunges per tool, coverage, travel, time",
              "", mode=1)
         _add(obj, "App::PropertyString", "PlanData", "The last plan and its input (JSON), read by the companions",
@@ -215,6 +220,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         companions.syncCompanions(obj)  # the proxy is not attached yet: opOnChanged does not run
         # Rest plunging after whatever the Job already does to the stock.
         obj.RestFrom = rest.PREVIOUS if rest.earlier(obj, job) else rest.STOCK
+        rest.link_sources(obj, job)
 
     def opUpdateDepths(self, obj):
         # FreeCAD takes the highest of the selected faces' bottoms; a pocket with
@@ -257,6 +263,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         if not faces:
             obj.Summary = translate("PlungeRough", "select the pocket's floor face")
             return
+        rest.link_sources(obj, PathUtils.findParentJob(obj))
         workdir = plan_folder(obj)
         notes = []
         try:

@@ -13,6 +13,7 @@ App side: never imports GUI code.
 import math
 
 import FreeCAD
+from PySide.QtCore import QT_TRANSLATE_NOOP
 
 from freecad_plugin import companions, compat, planner, tools
 
@@ -40,33 +41,36 @@ def op_property(op, name, default=None):
     return default
 
 
-def sources(obj, job):
-    """The operations before obj in the Job that cut: enabled, with a path and
-    a tool controller; obj's own companions (its start holes) left out."""
+def earlier(obj, job):
+    """The enabled operations before obj in the Job (their paths may not be
+    computed yet), obj's own companions (its start holes) left out."""
     own = {c.Name for c in companions.companions(obj)}
     out = []
-    for op in job.Operations.Group:
-        if op.Name == obj.Name:
-            break
-        if op.Name in own or not op_property(op, "Active", True):
-            continue
-        tc = op_property(op, "ToolController")
-        if tc is None or getattr(op, "Path", None) is None or not op.Path.Commands:
-            continue
-        out.append((op, tc))
-    return out
-
-
-def earlier(obj, job):
-    """Whether the Job has enabled operations before obj (their paths may not
-    be computed yet): rest plunging after them is the default."""
-    own = {c.Name for c in companions.companions(obj)}
     for op in job.Operations.Group if job is not None else []:
         if op.Name == obj.Name:
             break
         if op.Name not in own and op_property(op, "Active", True):
-            return True
-    return False
+            out.append(op)
+    return out
+
+
+def sources(obj, job):
+    """The operations before obj that cut: enabled, with a path and a tool
+    controller, as (operation, tool controller)."""
+    out = []
+    for op in earlier(obj, job):
+        tc = op_property(op, "ToolController")
+        if tc is not None and getattr(op, "Path", None) is not None and op.Path.Commands:
+            out.append((op, tc))
+    return out
+
+
+def link_sources(obj, job):
+    """Links obj to the operations before it (RestSources), so that a recompute
+    plans it after them, and again when they change."""
+    linked = earlier(obj, job) if getattr(obj, "RestFrom", NONE) == PREVIOUS else []
+    if hasattr(obj, "RestSources") and list(obj.RestSources) != linked:
+        obj.RestSources = linked
 
 
 def spacing_for(obj, lo, hi, tcs):
@@ -226,6 +230,24 @@ class Replay:
         self.line([x, y, r if self.retract_to_r else max(r, before)])
 
 
+def replay_onto(grid, ops, stock_top, progress=None):
+    """Sweeps the operations' paths (operation, tool controller), in order, over
+    the grid; the notes on commands not replayed."""
+    plunge = planner.planner()
+    notes = []
+    for op, tc in ops:
+        replay = Replay((0.0, 0.0, stock_top + 1000.0), grid["spacing"] / 4.0)
+        moves = replay.run(op.Path.Commands)
+        tool, rise = cutter_of(tc)
+        if rise:
+            moves = [(a, b, c + rise, d, e, f + rise) for a, b, c, d, e, f in moves]
+        grid["top"] = plunge.sweep(grid, tool, moves, progress)
+        if replay.notes:
+            notes.append(translate("PlungeRough", "%s: %s not replayed (taken as cutting nothing)")
+                         % (op.Label, ", ".join(sorted(replay.notes))))
+    return notes
+
+
 def material(obj, job, tcs, region, top_z, progress=None):
     """The "material" plan input for obj (None: the full stock, today's box),
     and the notes for the summary. region: (lo, hi) of the pocket in XY."""
@@ -235,22 +257,126 @@ def material(obj, job, tcs, region, top_z, progress=None):
     margin = max(tools.diameter(tc) for tc in tcs)  # the widest plunge past the pocket's edge, and a cell
     lo = (region[0][0] - margin, region[0][1] - margin)
     hi = (region[1][0] + margin, region[1][1] + margin)
-    h = spacing_for(obj, lo, hi, tcs)
-    grid = grid_over(lo, hi, h, top_z)
+    grid = grid_over(lo, hi, spacing_for(obj, lo, hi, tcs), top_z)
     grid["top"] = stock_tops(job.Stock.Shape, grid, top_z)
     notes = []
     if rest_from == PREVIOUS:
-        plunge = planner.planner()
-        for op, tc in sources(obj, job):
-            replay = Replay((0.0, 0.0, job.Stock.Shape.BoundBox.ZMax + 1000.0), h / 4.0)
-            moves = replay.run(op.Path.Commands)
-            tool, rise = cutter_of(tc)
-            if rise:
-                moves = [(a, b, c + rise, d, e, f + rise) for a, b, c, d, e, f in moves]
-            grid["top"] = plunge.sweep(grid, tool, moves, progress)
-            if replay.notes:
-                notes.append(translate("PlungeRough", "%s: %s not replayed (taken as cutting nothing)")
-                             % (op.Label, ", ".join(sorted(replay.notes))))
+        notes = replay_onto(grid, sources(obj, job), job.Stock.Shape.BoundBox.ZMax, progress)
     if min(grid["top"]) >= top_z - 1e-9:
         return None, notes  # nothing cut yet, stock all over the pocket: the full stock
     return grid, notes
+
+
+# -- the material an operation hands on ---------------------------------------------------
+def through(op, job):
+    """The operations that cut, up to op and its companions (its other plungers
+    and start holes), as (operation, tool controller)."""
+    mine = {op.Name} | {c.Name for c in companions.companions(op)}
+    group = list(job.Operations.Group)
+    last = max(i for i, o in enumerate(group) if o.Name in mine)
+    out = []
+    for o in group[:last + 1]:
+        tc = op_property(o, "ToolController")
+        if op_property(o, "Active", True) and tc is not None and o.Path.Commands:
+            out.append((o, tc))
+    return out
+
+
+def material_after(op, resolution=0.0):
+    """The material left after op (and everything before it) over the whole
+    stock, as a grid (docs/plan-format.md "material")."""
+    job = compat.PathUtils.findParentJob(op)
+    box = job.Stock.Shape.BoundBox
+    lo, hi = (box.XMin, box.YMin), (box.XMax, box.YMax)
+    h = resolution if resolution > 0 else max(MIN_SPACING, min(tools.diameter(tc) for tc in
+                                                                companions.tool_controllers(op)) / 64.0)
+    h = max(h, math.sqrt((hi[0] - lo[0]) * (hi[1] - lo[1]) / MAX_CELLS))
+    grid = grid_over(lo, hi, h, box.ZMax)
+    grid["top"] = stock_tops(job.Stock.Shape, grid, box.ZMax)
+    replay_onto(grid, through(op, job), box.ZMax)
+    return grid
+
+
+def grid_solid(grid, bottom, step=0.01):
+    """A compound of boxes from `bottom` up to each cell's top (heights rounded
+    up to `step`): cells of one height merged into rectangles, row runs first,
+    then equal runs of consecutive rows."""
+    import Part
+    nx, ny, h = grid["nx"], grid["ny"], grid["spacing"]
+    x0, y0 = grid["origin"]
+    tops = [math.ceil((t - 1e-9) / step) * step for t in grid["top"]]
+    open_runs = {}  # (i0, i1, z) -> first row
+    boxes = []
+
+    def close(key, j0, j1):
+        i0, i1, z = key
+        boxes.append(Part.makeBox((i1 - i0) * h, (j1 - j0) * h, z - bottom,
+                                  FreeCAD.Vector(x0 + i0 * h, y0 + j0 * h, bottom)))
+
+    for j in range(ny + 1):
+        runs = set()
+        if j < ny:
+            row = tops[j * nx:(j + 1) * nx]
+            i = 0
+            while i < nx:
+                k = i
+                while k + 1 < nx and row[k + 1] == row[i]:
+                    k += 1
+                if row[i] > bottom + 1e-9:
+                    runs.add((i, k + 1, row[i]))
+                i = k + 1
+        for key in [k for k in open_runs if k not in runs]:
+            close(key, open_runs.pop(key), j)
+        for key in runs:
+            open_runs.setdefault(key, j)
+    return Part.makeCompound(boxes)
+
+
+class RestSolid:
+    """Proxy of the rest material feature: the stock a Plunge Rough operation
+    leaves (wall band, floor rest, scallops between plunges) with everything
+    before it in the Job, as a solid over the Job's stock. Show or hide it,
+    or use it as the stock of a later Job; a later Plunge Rough replays the
+    same paths (Rest From)."""
+
+    def __init__(self, obj, op):
+        obj.addProperty("App::PropertyLink", "Operation", "Rest",
+                        QT_TRANSLATE_NOOP("App::Property", "The Plunge Rough operation whose rest this is"))
+        # A plain link list (hidden in the editor): FreeCAD's hidden links do
+        # not order the recompute.
+        obj.addProperty("App::PropertyLinkList", "Sources", "Rest",
+                        QT_TRANSLATE_NOOP("App::Property", "The operations replayed (recomputed after them)"))
+        obj.setEditorMode("Sources", 2)
+        obj.addProperty("App::PropertyLength", "Resolution", "Rest",
+                        QT_TRANSLATE_NOOP("App::Property", "Cell size; 0: the operation's Rest Resolution, or a "
+                                          "64th of its smallest plunger's diameter"))
+        obj.Operation = op
+        obj.Proxy = self
+
+    def execute(self, obj):
+        op = obj.Operation
+        job = compat.PathUtils.findParentJob(op) if op is not None else None
+        if job is None:
+            FreeCAD.Console.PrintError("%s: no Plunge Rough operation in a Job to take the rest of\n" % obj.Label)
+            return
+        ops = [o for o, _ in through(op, job)]
+        if list(obj.Sources) != ops:
+            obj.Sources = ops
+        resolution = obj.Resolution.Value or getattr(op, "RestResolution", FreeCAD.Units.Quantity(0)).Value
+        grid = material_after(op, resolution)
+        obj.Shape = grid_solid(grid, job.Stock.Shape.BoundBox.ZMin)
+
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        return None
+
+
+def make_rest_solid(op):
+    """The rest material feature of a Plunge Rough operation, recomputed."""
+    obj = op.Document.addObject("Part::FeaturePython", "PlungeRoughRest")
+    RestSolid(obj, op)
+    obj.Label = "%s rest" % op.Label
+    op.Document.recompute()
+    return obj

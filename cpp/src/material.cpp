@@ -58,7 +58,7 @@ double Material::highestAlong(Vec2 a, Vec2 b, double r) const {
   return h;
 }
 
-bool Material::cutsAny(Vec2 c, const Cutter& cutter, double z) const {
+bool Material::cutsAny(Vec2 c, const Cutter& cutter, double z, const std::function<bool(Vec2)>& counts) const {
   if (!grid_) return z < top_ - kAirTolerance;
   const double reach = cutter.radius + 0.5 * grid_->spacing;
   long i0, i1, j0, j1;
@@ -67,8 +67,10 @@ bool Material::cutsAny(Vec2 c, const Cutter& cutter, double z) const {
     for (long i = i0; i <= i1; ++i) {
       const double v = cell(i, j);
       if (v <= z + kAirTolerance) continue;  // the profile is never below the tip
-      const double rho = dist(centre(i, j), c);
-      if (rho <= reach && v > z + cutterProfile(cutter, std::min(rho, cutter.radius)) + kAirTolerance) return true;
+      const Vec2 p = centre(i, j);
+      const double rho = dist(p, c);
+      if (rho <= reach && v > z + cutterProfile(cutter, std::min(rho, cutter.radius)) + kAirTolerance && counts(p))
+        return true;
     }
   return false;
 }

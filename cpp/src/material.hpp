@@ -7,6 +7,7 @@
 // the grid's spacing may go unseen (the resolution). Without a grid the
 // material is the full stock: top_z everywhere.
 #pragma once
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -37,8 +38,10 @@ class Material {
   double highest(Vec2 c, double r) const { return highestAlong(c, c, r); }
   // Whether a cutter at c with its tip at z would cut material standing more
   // than kAirTolerance above its surface, at a centre up to half a cell beyond
-  // its rim (a plunge is rather made than left out).
-  bool cutsAny(Vec2 c, const Cutter& cutter, double z) const;
+  // its rim (a plunge is rather made than left out) where `counts` (the
+  // material the plan must cut: not the wall band it may leave).
+  bool cutsAny(Vec2 c, const Cutter& cutter, double z,
+               const std::function<bool(Vec2)>& counts = [](Vec2) { return true; }) const;
 
  private:
   double cell(long i, long j) const;  // top_z beyond the raster

@@ -517,12 +517,19 @@ std::vector<CutDisk> placeAndDepth(const PlanInput& in, const ToolTable& tools, 
 }
 
 // Rest plunging: the plunges that would cut none of the material the
-// operations before left are taken out of `disks` and returned (with their
-// tools' shapes and depths, to be counted as cut).
-std::vector<Plunge> dropAirPlunges(const Material& material, const ToolTable& tools, std::vector<CutDisk>& disks) {
+// operations before left, beyond the wall band the plan may leave (a second
+// pass leaves the first's scallops there, as the first did), are taken out
+// of `disks` and returned (with their tools' shapes and depths, to be counted
+// as cut).
+std::vector<Plunge> dropAirPlunges(const PlanInput& in, const Material& material, const ToolTable& tools,
+                                   const Region& region, std::vector<CutDisk>& disks) {
   std::vector<Plunge> inAir;
   if (!material.known()) return inAir;
-  auto air = [&](const CutDisk& d) { return !material.cutsAny(d.center, cutterOf(tools.byId(d.toolId)), d.z); };
+  const double band = in.radialAllowance + in.covering.maxWallStock;
+  auto counts = [&](Vec2 p) { return region.contains(p) && region.wallDistance(p, band) >= band; };
+  auto air = [&](const CutDisk& d) {
+    return !material.cutsAny(d.center, cutterOf(tools.byId(d.toolId)), d.z, counts);
+  };
   for (const CutDisk& d : disks)
     if (air(d)) inAir.push_back(plungeOf(tools.byId(d.toolId), d.center, d.z));
   disks.erase(std::remove_if(disks.begin(), disks.end(), air), disks.end());
@@ -629,7 +636,7 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
                            progress);
   bool held = false;
   std::vector<CutDisk> disks = placeAndDepth(in, tools, pocket, *floor, depths, std::move(placed), out, held, progress);
-  const std::vector<Plunge> inAir = dropAirPlunges(material, tools, disks);
+  const std::vector<Plunge> inAir = dropAirPlunges(in, material, tools, pocket.region, disks);
   out.stats.airPlunges = static_cast<int>(inAir.size());
   out.stats.restMaterial = material.known();
 

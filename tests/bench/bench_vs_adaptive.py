@@ -92,12 +92,11 @@ for _p in (os.path.join(BUILD, "cpp"), ROOT, os.path.join(ROOT, "resources", "ex
         sys.path.insert(0, _p)
 
 import FreeCAD  # noqa: E402
-import MeshPart  # noqa: E402
 import Part  # noqa: E402
 
 import example_part  # noqa: E402
 from freecad_plugin import companions, compat  # noqa: E402
-from gcode_replay import Stock, read_program, replay, tools_of  # noqa: E402
+from gcode_replay import Stock, part_surface, read_program, replay, tools_of  # noqa: E402
 
 V = FreeCAD.Vector
 PLUNGERS = (20.0, 12.0, 6.0)
@@ -246,38 +245,6 @@ def plunges_per_tool(program):
                 counts[m.tool] = counts.get(m.tool, 0) + 1
             moved = False
     return counts
-
-
-def part_surface(shape, stock):
-    """The part's top surface z at each cell (the highest upward facet of a fine
-    mesh over the cell centre); the stock's top where no part is."""
-    mesh = MeshPart.meshFromShape(Shape=shape, LinearDeflection=0.02, AngularDeflection=0.1)
-    points, facets = mesh.Topology
-    p = np.array([[v.x, v.y, v.z] for v in points])[np.array(facets)]
-    normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
-    up = normal[:, 2] > 1e-3 * np.linalg.norm(normal, axis=1)  # walls (normal z about 0) cast no surface
-    surface = np.full(stock.z.shape, -np.inf)
-    for tri in p[up]:
-        raster_triangle(surface, stock, tri)
-    surface[np.isinf(surface)] = stock.top
-    return surface
-
-
-def raster_triangle(surface, stock, tri):
-    i0, i1 = stock.index(tri[:, 0].min(), stock.x0), stock.index(tri[:, 0].max(), stock.x0) + 1
-    j0, j1 = stock.index(tri[:, 1].min(), stock.y0), stock.index(tri[:, 1].max(), stock.y0) + 1
-    i0, j0, i1, j1 = max(i0, 0), max(j0, 0), min(i1 + 1, len(stock.xs)), min(j1 + 1, len(stock.ys))
-    if i0 >= i1 or j0 >= j1:
-        return
-    x, y = np.meshgrid(stock.xs[i0:i1], stock.ys[j0:j1])
-    (x0, y0, z0), (x1, y1, z1), (x2, y2, z2) = tri
-    det = (y1 - y2) * (x0 - x2) + (x2 - x1) * (y0 - y2)
-    l0 = ((y1 - y2) * (x - x2) + (x2 - x1) * (y - y2)) / det
-    l1 = ((y2 - y0) * (x - x2) + (x0 - x2) * (y - y2)) / det
-    l2 = 1 - l0 - l1
-    inside = (l0 >= -1e-9) & (l1 >= -1e-9) & (l2 >= -1e-9)
-    z = np.where(inside, l0 * z0 + l1 * z1 + l2 * z2, -np.inf)
-    surface[j0:j1, i0:i1] = np.maximum(surface[j0:j1, i0:i1], z)
 
 
 def target_surface(surface, part_top, cell):

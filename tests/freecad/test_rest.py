@@ -10,7 +10,7 @@ import pytest
 
 import parts
 from freecad_plugin import PlungeRough, compat, rest
-from gcode_replay import Stock, read_program, replay, tools_of
+from gcode_replay import Stock, part_surface, read_program, tools_of
 
 V = FreeCAD.Vector
 CELL = 0.5  # mm, the checker's height field
@@ -152,3 +152,132 @@ def test_plunge_rough_after_adaptive_plans_only_the_rest(doc, cleared):
     print("Plunge Rough after Adaptive (top %g of 60 mm): %.2f min, whole pocket %.2f min (%.2f x)"
           % (cleared, rest_minutes, full_minutes, rest_minutes / full_minutes))
     assert rest_minutes <= 0.8 * full_minutes
+
+
+def test_the_rest_solid_matches_the_replay(doc):
+    """The rest material feature: the stock the Adaptive and the Plunge Rough
+    leave, as a solid, against the replay of the Job's posted G-code."""
+    job, adaptive, op = adaptive_then_plunge(doc)
+    solid = rest.make_rest_solid(op)
+    shape = solid.Shape
+    assert shape.isValid() and shape.Volume > 0
+    assert adaptive in solid.Sources and op in solid.Sources
+    _, _, _, stock = plunge_checks(job, program_of(job), 2)
+    box = job.Stock.Shape.BoundBox
+    replayed = float((stock.z - box.ZMin).sum()) * CELL ** 2
+    # Within the resolution: a cell's width along the pocket's walls (400 mm
+    # around, 60 mm high) of the two rasters.
+    assert abs(shape.Volume - replayed) < 400 * 60 * (CELL + 0.5), (shape.Volume, replayed)
+    # And point by point: the solid's top over the checker's cell centres.
+    worst = 0.0
+    for x, y in [(30.0, 30.0), (80.0, 60.0), (21.0, 60.0), (20.2, 20.2), (139.0, 99.0), (10.0, 60.0)]:
+        i, j = int((x - stock.x0) // CELL), int((y - stock.y0) // CELL)
+        line = Part.LineSegment(V(x, y, box.ZMax + 1), V(x, y, box.ZMin - 1)).toShape()
+        top = max(v.Point.z for v in shape.section(line).Vertexes)
+        worst = max(worst, abs(top - stock.z[j, i]))
+    assert worst < 0.5, worst
+    # After the Adaptive changes, the operation plans again (it is linked to
+    # it) and its rest with it.
+    before = solid.Shape.Volume
+    set_value(adaptive, "FinalDepth", box.ZMax - 30.0)
+    set_value(adaptive, "StepDown", 30.0)
+    doc.recompute()
+    plunges = PlungeRough.companions.plan_data(op)["plan"]["plunges"]
+    assert max(p["approach_z"] for p in plunges) < box.ZMax - 28.0
+    # Recomputed after them: the Adaptive's last pass along the walls now
+    # also takes the plunges' scallops from 10 mm more of them.
+    assert solid.Shape.Volume < before - 100.0
+
+
+def test_a_second_plunge_rough_plans_only_the_rest(doc):
+    """Two Plunge Roughs: the 20 mm plunger roughs a pocket with sharp corners,
+    then an 8 mm plunger takes only what it left (the corners)."""
+    job = parts.make_job(doc, pocket_block(depth=30.0))
+    job.Stock.ExtZpos = 0
+    doc.recompute()
+    model = job.Model.Group[0]
+    face = parts.floor_face_name(model.Shape, False)
+    first, (big,) = parts.add_plunge_rough(job, face, (20,), RadialAllowance=0.5)
+    small = parts.add_tool_controller(job, 8, 3)
+    second = PlungeRough.Create("PlungeRough", parentJob=job)
+    second.Base = [(model, [face])]
+    second.ToolControllers = [small]
+    second.RadialAllowance = 0.5
+    doc.recompute()
+    assert second.RestFrom == rest.PREVIOUS and first in second.RestSources
+    stats = PlungeRough.companions.plan_data(second)["plan"]["stats"]
+    assert stats["air_plunges"] > 50
+    # Against the same 8 mm operation alone on the full stock.
+    alone = PlungeRough.companions.plan_data(second)["plan"]["plunges"]
+    second.RestFrom = rest.NONE
+    doc.recompute()
+    full = PlungeRough.companions.plan_data(second)["plan"]["plunges"]
+    assert len(alone) < 0.2 * len(full), (len(alone), len(full))
+    second.RestFrom = rest.PREVIOUS
+    doc.recompute()
+    program = program_of(job)
+    cuts, heights, by_rapids, stock = plunge_checks(job, program, 3)
+    print("second pass: %d plunges of 8 mm (alone %d), each cut %.1f mm3 or more, rapids cut %.2f mm3"
+          % (len(cuts), len(full), min(cuts), by_rapids))
+    assert min(cuts) > 1.0, "a plunge of the second pass cut air"
+    assert by_rapids < 1.0
+    # Every plunge of the second pass is in a corner: where the 20 mm left material.
+    for p in PlungeRough.companions.plan_data(second)["plan"]["plunges"]:
+        near_x = min(p["x"] - 20.0, 140.0 - p["x"]) < 15.0
+        near_y = min(p["y"] - 20.0, 100.0 - p["y"]) < 15.0
+        assert near_x and near_y, (p["x"], p["y"])
+
+
+def cored_casting():
+    """A casting: the block with its pocket cored 4 mm inside the final walls
+    and 6 mm above the floor, drawn as a user draws one (Part boxes and a
+    fillet on the core's vertical edges)."""
+    block = Part.makeBox(160, 120, 70)
+    core = Part.makeBox(112, 72, 60, V(24, 24, 16))
+    core = core.makeFillet(6, [e for e in core.Edges if abs(e.Vertexes[0].Point.z - e.Vertexes[1].Point.z) > 1])
+    return block.cut(core)
+
+
+def test_a_cored_casting_is_plunged_only_where_it_has_material(doc):
+    job = parts.make_job(doc, pocket_block())
+    casting = doc.addObject("Part::Feature", "Casting")
+    casting.Shape = cored_casting()
+    doc.recompute()
+    # As the Job panel's "existing solid" stock does it.
+    stock = compat.PathJob.createResourceClone(job, casting, "Stock", "Stock")
+    doc.removeObject(job.Stock.Name)
+    job.Stock = stock
+    doc.recompute()
+    face = parts.floor_face_name(job.Model.Group[0].Shape, False)
+    op, _ = parts.add_plunge_rough(job, face, (20, 10), RadialAllowance=0.5)
+    assert op.RestFrom == rest.STOCK
+    plan = PlungeRough.companions.plan_data(op)["plan"]
+    assert plan["stats"]["rest_material"]
+    # Inside the core the casting stands 6 mm above the floor: the plunges
+    # there rapid down to just above it, not to the block's top.
+    inner = [p for p in plan["plunges"] if 40 < p["x"] < 120 and 40 < p["y"] < 80]
+    assert inner and max(p["approach_z"] for p in inner) <= 16.0 + 1.0 + 1e-6
+    program = program_of(job)
+    checker = Stock(job.Stock.Shape.BoundBox, CELL)
+    # The casting's top over each cell (a fine mesh: not rest.py's), then the program.
+    checker.z[:] = part_surface(casting.Shape, checker, empty=job.Stock.Shape.BoundBox.ZMin)
+    tools = tools_of(job)
+    casting_field = checker.z.copy()
+    cut_of_plunge = []
+    for m in program.moves:
+        if not m.rapid and m.a[:2] == m.b[:2] and m.b[2] < m.a[2]:
+            # What it cuts of the casting as it was before the operation (its
+            # own other plunges may have taken the rest of a covering's sliver).
+            probe = Stock(job.Stock.Shape.BoundBox, CELL)
+            probe.z = casting_field.copy()
+            cut_of_plunge.append(probe.cut(m.a, m.b, tools[m.tool]))
+        v = checker.cut(m.a, m.b, tools[m.tool])
+        if m.rapid:
+            assert v < 1.0, "a rapid cut %.1f mm3" % v
+    print("cored casting: %d plunges, each cut %.1f mm3 or more" % (len(cut_of_plunge), min(cut_of_plunge)))
+    assert min(cut_of_plunge) > 1.0
+    # The core is cut to the floor all the same.
+    inset = 0.5 + 1.0 + 2 * CELL
+    core = ((checker.xs[None, :] > 20 + inset) & (checker.xs[None, :] < 140 - inset)
+            & (checker.ys[:, None] > 20 + inset) & (checker.ys[:, None] < 100 - inset))
+    assert (checker.z[core] <= 10.0 + 0.01).mean() > 0.999
