@@ -11,7 +11,7 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
-from freecad_plugin import PlungeRough, companions, tools
+from freecad_plugin import PlungeRough, companions, rest, tools
 from freecad_plugin.command import ADDON, COMMAND, ICON, MENU_TEXT, TOOL_TIP
 from freecad_plugin import compat
 from freecad_plugin.compat import PathUtils, gui_modules, gui_util
@@ -82,6 +82,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
         self.picture = None
         for button, name in self._pictureButtons():
             button.clicked.connect(lambda checked=False, name=name: self.showPicture(name))
+        self.form.restSolid.clicked.connect(self.showRestSolid)
         self._enablePictures()
 
     def _pictureButtons(self):
@@ -117,6 +118,13 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
         self.picture.show()
         return self.picture
 
+    def showRestSolid(self):
+        """The operation's rest material feature (made once, then shown)."""
+        feature = rest.rest_solid_of(self.obj) or rest.make_rest_solid(self.obj)
+        if feature.ViewObject is not None:
+            feature.ViewObject.Visibility = True
+        return feature
+
     def cleanupPage(self, obj):
         if self.picture is not None:
             self.picture.close()
@@ -151,6 +159,8 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             obj.AutoSelectTools = self.form.autoSelectTools.isChecked()
         if obj.Strategy != self.form.strategy.currentText():
             obj.Strategy = self.form.strategy.currentText()
+        if obj.RestFrom != self.form.restFrom.currentText():
+            obj.RestFrom = self.form.restFrom.currentText()
         if abs(obj.MinCoverage - self.form.minCoverage.value()) > 1e-9:
             obj.MinCoverage = self.form.minCoverage.value()
         for prop, box in (("MaxEngagement", self.form.maxEngagement), ("MinEngagement", self.form.minEngagement)):
@@ -179,6 +189,11 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
         self.form.strategy.addItems(obj.getEnumerationsOfProperty("Strategy"))
         self.form.strategy.setCurrentText(obj.Strategy)
         self.form.strategy.blockSignals(False)
+        self.form.restFrom.blockSignals(True)
+        self.form.restFrom.clear()
+        self.form.restFrom.addItems(obj.getEnumerationsOfProperty("RestFrom"))
+        self.form.restFrom.setCurrentText(obj.RestFrom)
+        self.form.restFrom.blockSignals(False)
         self.form.minCoverage.setValue(obj.MinCoverage)
         self.form.maxEngagement.setValue(obj.MaxEngagement)
         self.form.minEngagement.setValue(obj.MinEngagement)
@@ -214,6 +229,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             self.form.useCannedCycle.stateChanged,
             self.form.autoSelectTools.stateChanged,
             self.form.strategy.currentIndexChanged,
+            self.form.restFrom.currentIndexChanged,
             self.form.minCoverage.editingFinished,
             self.form.coolantController.currentIndexChanged,
             self.form.toolControllers.itemChanged,

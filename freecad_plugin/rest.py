@@ -262,9 +262,20 @@ def material(obj, job, tcs, region, top_z, progress=None):
     notes = []
     if rest_from == PREVIOUS:
         notes = replay_onto(grid, sources(obj, job), job.Stock.Shape.BoundBox.ZMax, progress)
-    if min(grid["top"]) >= top_z - 1e-9:
+    if _full(grid, region, top_z):
         return None, notes  # nothing cut yet, stock all over the pocket: the full stock
     return grid, notes
+
+
+def _full(grid, region, top_z):
+    """Whether the material stands at top_z over the whole pocket's box (the
+    margin around it lies in the part's walls, where no plunge goes)."""
+    nx, h = grid["nx"], grid["spacing"]
+    x0, y0 = grid["origin"]
+    i0, i1 = int((region[0][0] - x0) // h), int((region[1][0] - x0) // h)
+    j0, j1 = int((region[0][1] - y0) // h), int((region[1][1] - y0) // h)
+    top = grid["top"]
+    return all(min(top[j * nx + i0:j * nx + i1 + 1]) >= top_z - 1e-9 for j in range(j0, j1 + 1))
 
 
 # -- the material an operation hands on ---------------------------------------------------
@@ -288,8 +299,9 @@ def material_after(op, resolution=0.0):
     job = compat.PathUtils.findParentJob(op)
     box = job.Stock.Shape.BoundBox
     lo, hi = (box.XMin, box.YMin), (box.XMax, box.YMax)
+    # Coarser than the planner's: a solid to look at and to start a Job from.
     h = resolution if resolution > 0 else max(MIN_SPACING, min(tools.diameter(tc) for tc in
-                                                                companions.tool_controllers(op)) / 64.0)
+                                                                companions.tool_controllers(op)) / 16.0)
     h = max(h, math.sqrt((hi[0] - lo[0]) * (hi[1] - lo[1]) / MAX_CELLS))
     grid = grid_over(lo, hi, h, box.ZMax)
     grid["top"] = stock_tops(job.Stock.Shape, grid, box.ZMax)
@@ -348,8 +360,8 @@ class RestSolid:
                         QT_TRANSLATE_NOOP("App::Property", "The operations replayed (recomputed after them)"))
         obj.setEditorMode("Sources", 2)
         obj.addProperty("App::PropertyLength", "Resolution", "Rest",
-                        QT_TRANSLATE_NOOP("App::Property", "Cell size; 0: the operation's Rest Resolution, or a "
-                                          "64th of its smallest plunger's diameter"))
+                        QT_TRANSLATE_NOOP("App::Property", "Cell size; 0: a 16th of the operation's smallest "
+                                          "plunger's diameter, at least 0.2 mm"))
         obj.Operation = op
         obj.Proxy = self
 
@@ -362,8 +374,7 @@ class RestSolid:
         ops = [o for o, _ in through(op, job)]
         if list(obj.Sources) != ops:
             obj.Sources = ops
-        resolution = obj.Resolution.Value or getattr(op, "RestResolution", FreeCAD.Units.Quantity(0)).Value
-        grid = material_after(op, resolution)
+        grid = material_after(op, obj.Resolution.Value)
         obj.Shape = grid_solid(grid, job.Stock.Shape.BoundBox.ZMin)
 
     def dumps(self):
@@ -371,6 +382,14 @@ class RestSolid:
 
     def loads(self, state):
         return None
+
+
+def rest_solid_of(op):
+    """The operation's rest material feature, if it has one."""
+    for o in op.InList:
+        if isinstance(getattr(o, "Proxy", None), RestSolid) and o.Operation == op:
+            return o
+    return None
 
 
 def make_rest_solid(op):

@@ -18,7 +18,7 @@ std::string planSummary(const Plan& plan) {
     << " % of the core cut), floor up to " << st.maxFloorStockLeft << " mm (mean " << st.meanFloorStock << " mm); "
     << std::setprecision(1) << st.volumeRemoved / 1000 << " cm3 removed, " << st.volumeLeft / 1000 << " cm3 left";
   if (st.restMaterial)
-    s << "; rest plunging: " << st.volumeBefore / 1000 << " cm3 left by the operations before, "
+    s << "; rest plunging: " << st.volumeBefore / 1000 << " cm3 in the pocket before this operation, "
       << 100 * st.volumeRemoved / std::max(st.volumeBefore, 1e-9) << " % of it removed here"
       << (st.airPlunges ? ", " + std::to_string(st.airPlunges) + " plunges in cleared space left out" : std::string());
   if (st.restPlunges) s << "; " << st.restPlunges << " plunges added for the floor stock";

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <vector>
@@ -72,6 +73,16 @@ std::string stockMapSvg(const StockMap& m, double limit) {
   return s.str();
 }
 
+// Even-odd containment in a pocket's loops.
+bool insideLoops(const Polygons& loops, Vec2 p) {
+  bool in = false;
+  for (const Loop& L : loops)
+    for (size_t i = 0, j = L.size() - 1; i < L.size(); j = i++)
+      if ((L[j].y > p.y) != (L[i].y > p.y) && L[j].x + (p.y - L[j].y) / (L[i].y - L[j].y) * (L[i].x - L[j].x) > p.x)
+        in = !in;
+  return in;
+}
+
 // One of the plan's pictures (planToSvg), layer by layer; y is drawn downwards.
 // Each view answers one question, so nothing drawn for one hides another.
 class SvgPicture {
@@ -97,6 +108,7 @@ class SvgPicture {
   std::string draw() {
     frame();
     pocket();
+    if (view_ == SvgView::Plan && in_.material) material(*in_.material);
     if (view_ == SvgView::Plan) tours();
     if (view_ == SvgView::Stock) stockLeft();
     if (view_ == SvgView::Heights) heights();
@@ -108,7 +120,7 @@ class SvgPicture {
  private:
   size_t legendLines() const {
     switch (view_) {
-      case SvgView::Plan: return 3 + plan_.stats.perTool.size();
+      case SvgView::Plan: return 3 + plan_.stats.perTool.size() + (in_.material ? 1 : 0);
       case SvgView::Stock: return 3 + std::min<size_t>(plan_.broken.size(), kMaxBrokenLines);
       case SvgView::Heights: return 3;
     }
@@ -138,6 +150,53 @@ class SvgPicture {
          << "\"/>\n";
     s_ << "<path d=\"" << pathData(plan_.accessible) << "\" fill=\"none\" stroke=\"#555\" stroke-dasharray=\""
        << 4 * sw_ << "\" stroke-width=\"" << sw_ << "\"/>\n";
+  }
+
+  // Rest plunging: the material the plan starts from, inside the pocket, from
+  // light (cut down to the deepest plunge) to dark (the stock top), in blocks
+  // of at most about 1/150 of the picture (each its highest).
+  static std::string materialColour(double f) {
+    f = std::clamp(f, 0.0, 1.0);
+    std::ostringstream c;
+    c << "rgb(" << static_cast<int>(250 - 90 * f) << "," << static_cast<int>(250 - 105 * f) << ","
+      << static_cast<int>(250 - 130 * f) << ")";
+    return c.str();
+  }
+  void material(const MaterialGrid& g) {
+    const size_t step = std::max<size_t>(1, static_cast<size_t>(std::ceil(size_ / 150.0 / g.spacing)));
+    const double zTop = in_.topZ, zLow = std::min(zLo_, zTop - 1e-3);
+    // Blocks whose centre is in the pocket (Qt's SVG renderer, FreeCAD's
+    // picture window, has no clip paths).
+    Polygons all{in_.boundary};
+    for (const Loop& L : in_.islands) all.push_back(L);
+    s_ << "<g stroke=\"none\">\n";
+    for (size_t j = 0; j < g.ny; j += step) {
+      std::string last;
+      double runX = 0.0, runW = 0.0;
+      auto flush = [&] {
+        if (!last.empty())
+          // A little taller than the row: no hairline between rows when drawn smooth.
+          s_ << "<rect x=\"" << runX << "\" y=\"" << -(g.origin.y + (j + step) * g.spacing) << "\" width=\"" << runW
+             << "\" height=\"" << 1.05 * step * g.spacing << "\" fill=\"" << last << "\"/>\n";
+        last.clear();
+      };
+      for (size_t i = 0; i < g.nx; i += step) {
+        double top = -std::numeric_limits<double>::infinity();
+        for (size_t b = j; b < std::min(g.ny, j + step); ++b)
+          for (size_t a = i; a < std::min(g.nx, i + step); ++a) top = std::max(top, std::min(zTop, g.top[b * g.nx + a]));
+        const Vec2 centre{g.origin.x + (i + 0.5 * step) * g.spacing, g.origin.y + (j + 0.5 * step) * g.spacing};
+        const std::string c = insideLoops(all, centre) ? materialColour((top - zLow) / (zTop - zLow)) : std::string();
+        if (c != last || c.empty()) {
+          flush();
+          last = c;
+          runX = g.origin.x + i * g.spacing;
+          runW = 0.0;
+        }
+        runW += step * g.spacing;
+      }
+      flush();
+    }
+    s_ << "</g>\n";
   }
 
   void disk(const Plunge& p, const std::string& fill, double opacity, const std::string& stroke) {
@@ -271,6 +330,10 @@ class SvgPicture {
     int starts = 0;
     for (const Plunge& p : plan_.plunges) starts += p.start && !p.startHole;
     line(0, "its path: ring at its first plunge, faint (first) to strong (last)");
+    if (in_.material) {
+      for (int k = 0; k <= 4; ++k) swatch(lo_.x + k * fs_, y_, materialColour(0.25 * k));
+      line(fs_ * 5.4, "material before it: light (cut) to dark (stock top)");
+    }
     line(0, "black: " + std::to_string(starts) + " starts (dots), " + std::to_string(plan_.stats.startHoles) +
                 " start holes (rings), " + std::to_string(plan_.stats.leadOuts) + " lead-outs (ticks)");
   }

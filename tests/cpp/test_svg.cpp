@@ -94,3 +94,26 @@ TEST(Svg, HeightsOnlyOverASculpturedFloorDeepestOnTop) {
   for (size_t k = 1; k < drawn.size(); ++k) EXPECT_LE(drawn[k], drawn[k - 1]);
   EXPECT_LT(drawn.back(), drawn.front());  // the floor slopes: heights differ
 }
+
+// Rest plunging: the plan view draws the material the plan started from
+// behind the disks, inside the pocket only, dark where the stock is whole.
+TEST(Svg, PlanViewShowsTheMaterialBeforeAsItsBackground) {
+  PlanInput in = test::rectanglePocket();
+  in.material = MaterialGrid{{-20, -20}, 1.0, 160, 120, std::vector<double>(160 * 120, -5.0)};
+  for (size_t j = 0; j < 120; ++j)
+    for (size_t i = 0; i < 20; ++i) in.material->top[j * 160 + i] = in.topZ;  // x < 0: the wall's side, whole
+  for (size_t j = 0; j < 120; ++j)
+    for (size_t i = 20; i < 60; ++i) in.material->top[j * 160 + i] = in.topZ;  // 0 < x < 40: untouched
+  const Plan p = plan(in);
+  const std::string svg = planToSvg(in, p, SvgView::Plan);
+  EXPECT_NE(svg.find("material before it"), std::string::npos);
+  const std::string dark = "fill=\"rgb(160,145,120)\"";
+  EXPECT_NE(svg.find(dark), std::string::npos);  // the untouched third
+  // Nothing drawn outside the pocket: no block starts left of its wall.
+  for (size_t at = svg.find(dark); at != std::string::npos; at = svg.find(dark, at + 1)) {
+    const size_t x = svg.rfind("<rect x=\"", at);
+    EXPECT_GE(std::stod(svg.substr(x + 9)), -1e-9);
+  }
+  in.material.reset();
+  EXPECT_EQ(planToSvg(in, plan(in), SvgView::Plan).find("material before it"), std::string::npos);
+}

@@ -10,6 +10,9 @@ buttons, the tree's delete, undo and redo, the simulators' own panels.
    the operation from the toolbar (every plunger ticked, no chooser), accept,
    Cancel after changing the plungers, undo and redo, deleting a companion and
    the operation from the tree.
+3. A plunge mill bit from the tool library.
+4. The example's operation offers the material it leaves (its panel's "Rest
+   material" button), shown alone.
 Any modal dialog is recorded and closed; the report view's errors are read at
 the end. Results go to $PLUNGE_GUI_OUT/gui_result.json, screenshots beside it."""
 import json
@@ -786,6 +789,35 @@ def plunge_mill_bit():
     step("plunge mill in the tool bit editor")
 
 
+def rest_material():
+    """Phase 4: the example's operation offers the material it leaves, from its
+    panel's button, as a solid beside it."""
+    from freecad_plugin import rest
+    doc = FreeCAD.openDocument(os.environ["PLUNGE_EXAMPLE_DOC"])
+    op = doc.getObject("PlungeRough")
+    page = open_panel(op).featurePages[-1]
+    result["rest_from"] = [page.form.restFrom.itemText(i) for i in range(page.form.restFrom.count())]
+    result["rest_from_current"] = page.form.restFrom.currentText()
+    page.form.restSolid.click()
+    wait(1)
+    del page  # see example_document
+    click_task_button("OK")
+    doc.recompute()
+    feature = rest.rest_solid_of(op)
+    result["rest_solid"] = None if feature is None else {
+        "label": feature.Label, "valid": feature.Shape.isValid(), "volume": feature.Shape.Volume,
+        "stock_volume": op.Document.getObject("Job").Stock.Shape.Volume, "visible": feature.ViewObject.Visibility}
+    for o in doc.Objects:  # the rest alone, as a user looks at it
+        if o.ViewObject is not None and o is not feature and o.ViewObject.Visibility and o.TypeId != "App::Origin":
+            o.ViewObject.Visibility = False
+    view = FreeCADGui.getDocument(doc.Name).ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    wait(1)
+    view.saveImage(os.path.join(OUT, "rest_material_3d.png"), 1000, 700, "White")
+    step("rest material")
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
     timer = QtCore.QTimer()
@@ -804,6 +836,7 @@ def main():
     example_document()
     new_job()
     plunge_mill_bit()
+    rest_material()
     report_errors()
     result["ok"] = True
 

@@ -214,6 +214,17 @@ def test_plunge_mill_from_the_library(result):
         assert mill["editor_attempts"] == 1 + len(editor_bugs), result["report_known_upstream"]
 
 
+def test_rest_material_from_the_panel(result):
+    """The panel's "Rest from" lists the choices, and its "Rest material"
+    button makes the solid of what the example's plan leaves: less than the
+    stock, more than nothing, valid, shown."""
+    assert result["rest_from"] == ["Previous operations", "Job stock", "None"]
+    assert result["rest_from_current"] == "Job stock"  # the example's Job has no operation before it
+    solid = result["rest_solid"]
+    assert solid and solid["valid"] and solid["visible"], solid
+    assert 0.3 * solid["stock_volume"] < solid["volume"] < solid["stock_volume"] - 1000.0, solid
+
+
 def test_screenshots(result, out):
     names = ["example_simulated.png", "job_panel.png", "plunge_rough_panel.png", "plunge_rough_gui.png",
              "plunge_mill_bit.png"]
