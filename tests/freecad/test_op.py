@@ -212,9 +212,10 @@ def test_saved_and_restored(doc, tmp_path):
     job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
     count = PlungeRough.plan_of(op)["stats"]["plunge_count"]
     name = op.Name
-    # A file from before the growth pattern and tool change time: both come
-    # back with their defaults (the plan as it was planned).
-    for prop in ("GrowthPattern", "ToolChangeTime"):
+    # A file from before the growth pattern, tool change time and rest
+    # plunging: they come back with their defaults, and rest plunging off
+    # (solid stock from the start depth, the plan as it was planned).
+    for prop in ("GrowthPattern", "ToolChangeTime", "RestFrom", "RestResolution", "RestSources"):
         op.removeProperty(prop)
     path = str(tmp_path / "plunge.FCStd")
     doc.saveAs(path)
@@ -225,6 +226,7 @@ def test_saved_and_restored(doc, tmp_path):
         assert isinstance(op2.Proxy, PlungeRough.ObjectPlungeRough)
         assert op2.RadialAllowance.Value == 0.5 and len(op2.ToolControllers) == 3
         assert op2.GrowthPattern == "Auto" and op2.ToolChangeTime == 20.0
+        assert op2.RestFrom == "None" and op2.RestResolution.Value == 0.0
         op2.touch()
         again.recompute()
         assert PlungeRough.plan_of(op2)["stats"]["plunge_count"] == count
