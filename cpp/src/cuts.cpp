@@ -22,9 +22,29 @@ struct Span {
   double t0, t1;
 };
 
+// The parts of the radius along u (t in [0, r]) where the material before
+// stands no higher than the plunge's surface (+ skin), sampled every half cell.
+void materialSpans(const Material& material, double skin, Vec2 c, Vec2 u, const Cutter& cutter, double z,
+                   std::vector<Span>& spans) {
+  const double r = cutter.radius, step = 0.5 * material.spacing();
+  const int n = std::max(1, static_cast<int>(std::ceil(r / step)));
+  double from = -1.0;
+  for (int k = 0; k <= n; ++k) {
+    const double t = r * k / n;
+    const bool cleared = material.at(c + u * t) <= z + cutterProfile(cutter, t) + skin;
+    if (cleared && from < 0.0) from = std::max(0.0, t - 0.5 * r / n);
+    if (!cleared && from >= 0.0) {
+      spans.push_back({from, t - 0.5 * r / n});
+      from = -1.0;
+    }
+  }
+  if (from >= 0.0) spans.push_back({from, r});
+}
+
 }  // namespace
 
 Cuts::Cuts(double skin) : skin_(skin) {}
+Cuts::Cuts(double skin, const Material& material) : skin_(skin), material_(material) {}
 
 long long Cuts::key(long i, long j) const {
   return static_cast<long long>((static_cast<unsigned long long>(i) << 32) ^
@@ -64,7 +84,7 @@ std::vector<const Cuts::Cut*> Cuts::near(Vec2 c, double r) const {
 double Cuts::engagement(Vec2 c, const Cutter& cutter, double z, double enough) const {
   const double r = cutter.radius;
   const std::vector<const Cut*> cuts = near(c, r);
-  if (cuts.empty()) return r;
+  if (cuts.empty() && !material_.known()) return r;
   // Whether a cut leaves no material (beyond the skin) at the point t along
   // the radius u: its cutting surface there no higher than this plunge's.
   auto clears = [&](const Cut& q, Vec2 u, double t) {
@@ -98,6 +118,7 @@ double Cuts::engagement(Vec2 c, const Cutter& cutter, double z, double enough) c
       for (int k = 0; k < kProfilePieces; ++k)
         if (clears(*q, u, t0 + (k + 0.5) * piece)) spans.push_back({t0 + k * piece, t0 + (k + 1) * piece});
     }
+    if (material_.known()) materialSpans(material_, skin_, c, u, cutter, z, spans);
     std::sort(spans.begin(), spans.end(), [](const Span& x, const Span& y) { return x.t0 < y.t0; });
     double covered = 0.0, end = 0.0;
     for (const Span& s : spans) {

@@ -13,6 +13,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "material.hpp"
 #include "plunge/geometry.hpp"
 #include "plunge/types.hpp"
 
@@ -23,6 +24,10 @@ class Cuts {
   // `skin`: material thinner than this above a plunge's cutting surface does
   // not count (heightfield.hpp's kEngagementSkin).
   explicit Cuts(double skin);
+  // Rest plunging: what the operations before left (material.hpp). Material
+  // they cut down to a plunge's surface does not count in its engagement;
+  // without, the stock is solid.
+  Cuts(double skin, const Material& material);
 
   // A plunge made: the cutter with its tip at z, at c.
   void add(Vec2 c, const Cutter& cutter, double z);
@@ -46,6 +51,7 @@ class Cuts {
   long long key(long i, long j) const;
 
   double skin_;
+  Material material_{std::nullopt, 0.0};
   double cell_ = 0.0;  // the bucket size: the largest cut's diameter so far
   std::vector<Cut> cuts_;
   std::unordered_map<long long, std::vector<size_t>> grid_;

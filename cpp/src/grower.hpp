@@ -34,7 +34,8 @@ struct ToolRun {
 class Grower {
  public:
   Grower(const EngagementOptions& in, const Region& region, const DepthSolver& depths, HeightField& stock)
-      : in_(in), region_(region), depths_(depths), stock_(stock), progress_(in.progress) {}
+      : in_(in), region_(region), depths_(depths), stock_(stock), cuts_(kEngagementSkin, in.material),
+        progress_(in.progress) {}
 
   // The plunges of `ordered` (tools largest first), limited tools' regrown.
   std::vector<Plunge> run(const std::vector<Plunge>& ordered);
@@ -77,7 +78,7 @@ class Grower {
   const Region& region_;
   const DepthSolver& depths_;
   HeightField& stock_;
-  Cuts cuts_{kEngagementSkin};  // the same plunges as circles: the exact engagement
+  Cuts cuts_;  // the same plunges as circles (and the material before): the exact engagement
   const Progress& progress_;
   Polygons cleared_;
   std::vector<Circle> newDisks_;

@@ -30,6 +30,7 @@ class Material {
   // Whether the operations before left less than the full stock anywhere.
   bool known() const { return grid_ != nullptr; }
   double topZ() const { return top_; }
+  double spacing() const { return grid_ ? grid_->spacing : 0.0; }
   // The material at p (its cell's), top_z beyond the raster.
   double at(Vec2 p) const;
   // Highest material at the centres inside the disk of radius r swept from a

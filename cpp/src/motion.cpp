@@ -128,7 +128,7 @@ class MotionPass {
  public:
   MotionPass(const Region& region, const DepthSolver& depths, const MotionOptions& in)
       : region_(region), depths_(depths), in_(in), stock_(stockOf(in.tools.all(), in.material, region)),
-        touched_(in.tools.all().front().diameter, in.material) {
+        cuts_(kEngagementSkin, in.material), touched_(in.tools.all().front().diameter, in.material) {
     over_.b = {"max_engagement", 0, 0, {}, 0, ""};
     thin_.b = {"min_engagement", 0, 0, {}, 0, ""};
     core_.b = {"core_diameter", 0, 0, {}, 0, ""};
@@ -146,7 +146,7 @@ class MotionPass {
   const DepthSolver& depths_;
   const MotionOptions& in_;
   HeightField stock_;
-  Cuts cuts_{kEngagementSkin};  // the plunges alone (not their lead-outs): the engagement as grown
+  Cuts cuts_;  // the plunges alone (not their lead-outs) and the material before: the engagement as grown
   Touched touched_;
   Worst over_, thin_, core_, deep_;
 };

@@ -164,3 +164,27 @@ TEST(RestPlan, RefusesABadGrid) {
   in.material->top[5] = NAN;
   EXPECT_NE(test::planError(in).find("material"), std::string::npos);
 }
+
+// A plunge mill with an engagement limit after the left half of the pocket
+// was cleared to the floor: the engagement counts only the material left, so
+// the growth starts beside the cleared half (no start into solid needed
+// there) and plans fewer plunges, each within its limit.
+TEST(RestPlan, EngagementCountsOnlyTheMaterialLeft) {
+  PlanInput in = pocketAfter(12.5, -20, 50);
+  for (Tool& t : in.tools) t.maxEngagement = 0.3 * t.diameter;
+  const Plan rest = plan(in);
+  in.material.reset();
+  const Plan full = plan(in);
+  EXPECT_LT(rest.plunges.size(), full.plunges.size());
+  EXPECT_EQ(rest.stats.overEngaged, 0);
+  int starts = 0;
+  for (const Plunge& p : rest.plunges) {
+    starts += p.start;
+    if (!p.start) {
+      EXPECT_LE(p.engagement, 0.3 * p.diameter + 0.02) << p.x << " " << p.y;
+    }
+  }
+  int fullStarts = 0;
+  for (const Plunge& p : full.plunges) fullStarts += p.start;
+  EXPECT_LE(starts, fullStarts);
+}
