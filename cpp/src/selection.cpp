@@ -12,6 +12,7 @@
 #include "covering.hpp"
 #include "plunge/error.hpp"
 #include "limits.hpp"
+#include "material.hpp"
 #include "plunge/types.hpp"
 #include "polygon.hpp"
 #include "plunge/tools.hpp"
@@ -210,14 +211,17 @@ double estimateMinutes(const PlanInput& in, const std::vector<CoverDisk>& disks,
   std::vector<double> perTool(in.tools.size(), 0.0);
   std::vector<bool> used(in.tools.size(), false);
   const Tool& smallest = in.tools.back();
+  // Rest plunging: each plunge from the material left under it, none in air.
+  const Material material(in.material, in.topZ);
   double restArea = 0.0;
   for (size_t i = 0; i < disks.size(); ++i) {
     const CoverDisk& d = disks[i];
     const size_t k = tool[i];
     const Tool& t = in.tools[k];
-    used[k] = true;
     const Stop stop = stopOf(in, floor, d.center, d.radius);
-    const double depth = in.topZ - stop.z;
+    if (material.known() && !material.cutsAny(d.center, cutterOf(t), stop.z)) continue;
+    used[k] = true;
+    const double depth = material.highest(d.center, d.radius) - stop.z;
     if (!(depth > 0.0)) continue;
     restArea += stop.restShare * kPi * d.radius * d.radius;
     // Levels of the flute length (motion.hpp), each fed from the clearance over
@@ -315,8 +319,11 @@ class ToolSetSearch {
   }
   double lowerBound(const std::vector<double>& set) const { return bound(set.front(), set.size()); }
   double bound(double diameter, double nTools) const {
-    const double rBig = 0.5 * diameter;
     const TimeModel& m = in_.motion.timeModel;
+    // After earlier operations the area and volume left are not the pocket's:
+    // only the tool changes bound the time (every set is estimated).
+    if (in_.material) return weighted(nTools * m.toolChangeSeconds / 60.0, nTools);
+    const double rBig = 0.5 * diameter;
     const double disk = kPi * rBig * rBig, plunges = in_.covering.minCoverage * accArea_ / disk;
     const double moves = plunges * perPlunge_ + std::max(plunges * perPlungeFeed_, volume_ / disk);
     return weighted(nTools * m.toolChangeSeconds / 60.0 + moves, nTools);

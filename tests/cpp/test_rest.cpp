@@ -188,3 +188,35 @@ TEST(RestPlan, EngagementCountsOnlyTheMaterialLeft) {
   for (const Plunge& p : full.plunges) fullStarts += p.start;
   EXPECT_LE(starts, fullStarts);
 }
+
+// The automatic tool choice after the pocket was cleared to the floor but
+// for a strip along its left wall: each set's estimate counts only the
+// plunges that cut the strip, and the plan chosen is as fast as the best of
+// its sets planned in full (within the estimate's 5 %). Every set keeps the
+// library's smallest (the island's corners need it, selection.hpp).
+TEST(RestPlan, ToolChoiceWeighsOnlyTheRest) {
+  PlanInput in = pocketAfter(12.5, 20, 140);  // the strip 0 < x < 20 - 10 (the clearing tool's radius) left
+  in.choice.automatic = true;
+  in.choice.library = {{20, 1, 100}, {12, 2, 100}, {6, 3, 100}};
+  for (Tool& t : in.choice.library) t.fluteLength = 5.0;
+  in.tools.clear();
+  const Plan chosen = plan(in);
+  ASSERT_TRUE(chosen.selection);
+  EXPECT_GT(chosen.stats.airPlunges, 0);
+  double best = 1e300;
+  for (const std::vector<double>& set : {std::vector<double>{20, 6}, {20, 12, 6}, {12, 6}, {6}}) {
+    PlanInput one = in;
+    one.choice.automatic = false;
+    one.tools.clear();
+    int id = 1;
+    for (double d : set) {
+      one.tools.push_back({d, id++, 100});
+      one.tools.back().fluteLength = 5.0;
+    }
+    try {
+      best = std::min(best, plan(one).stats.estimatedMinutes);
+    } catch (const Error&) {  // a set that cannot plan the pocket
+    }
+  }
+  EXPECT_LE(chosen.stats.estimatedMinutes, 1.05 * best);
+}
