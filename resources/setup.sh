@@ -11,7 +11,7 @@ PACKAGES="cmake g++ make pkg-config
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-visualization-dev
   pybind11-dev python3-dev libgtest-dev python3-pytest python3-shapely python3-jsonschema python3-scipy
-  freecad xvfb xauth libgl1-mesa-dri"
+  python3-numpy freecad xvfb xauth libgl1-mesa-dri"
 
 installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
 install_missing() {
