@@ -384,6 +384,32 @@ class RestSolid:
         return None
 
 
+class ViewProviderRest:
+    """The rest material's view provider: the shape shown as a Part's, in
+    stock colour (a view provider without a proxy shows nothing). Plain
+    Python: App code may make it without importing GUI code."""
+
+    def __init__(self, vobj):
+        vobj.Proxy = self
+
+    def attach(self, vobj):
+        self.Object = vobj.Object
+
+    def getDisplayModes(self, vobj):
+        return ["Flat Lines", "Shaded", "Wireframe"]
+
+    def getDefaultDisplayMode(self):
+        return "Flat Lines"  # the boxes' edges show the steps (shading alone draws one flat patch offscreen)
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
+    dumps, loads = __getstate__, __setstate__
+
+
 def rest_solid_of(op):
     """The operation's rest material feature, if it has one."""
     for o in op.InList:
@@ -396,6 +422,9 @@ def make_rest_solid(op):
     """The rest material feature of a Plunge Rough operation, recomputed."""
     obj = op.Document.addObject("Part::FeaturePython", "PlungeRoughRest")
     RestSolid(obj, op)
+    if obj.ViewObject is not None:
+        ViewProviderRest(obj.ViewObject)
+        obj.ViewObject.ShapeColor = (0.85, 0.55, 0.25)  # stock, apart from the part's grey
     obj.Label = "%s rest" % op.Label
     op.Document.recompute()
     return obj

@@ -815,6 +815,11 @@ def rest_material():
     view.fitAll()
     wait(1)
     view.saveImage(os.path.join(OUT, "rest_material_3d.png"), 1000, 700, "White")
+    image = QtGui.QImage(os.path.join(OUT, "rest_material_3d.png"))
+    white = QtGui.QColor("white").rgb()
+    if result["rest_solid"] is not None:  # how much of the picture the solid covers
+        samples = [image.pixel(x, y) != white for x in range(0, image.width(), 10) for y in range(0, image.height(), 10)]
+        result["rest_solid"]["drawn"] = sum(samples) / max(1, len(samples))
     step("rest material")
 
 

@@ -223,6 +223,7 @@ def test_rest_material_from_the_panel(result):
     solid = result["rest_solid"]
     assert solid and solid["valid"] and solid["visible"], solid
     assert 0.3 * solid["stock_volume"] < solid["volume"] < solid["stock_volume"] - 1000.0, solid
+    assert solid["drawn"] > 0.1, solid  # rest_material_3d.png shows it
 
 
 def test_screenshots(result, out):
