@@ -10,9 +10,9 @@ buttons, the tree's delete, undo and redo, the simulators' own panels.
    the operation from the toolbar (every plunger ticked, no chooser), accept,
    Cancel after changing the plungers, undo and redo, deleting a companion and
    the operation from the tree.
-3. A plunge mill bit from the tool library.
-4. The example's operation offers the material it leaves (its panel's "Rest
+3. The example's operation offers the material it leaves (its panel's "Rest
    material" button), shown alone.
+4. A plunge mill bit from the tool library, opened in FreeCAD's editor.
 Any modal dialog is recorded and closed; the report view's errors are read at
 the end. Results go to $PLUNGE_GUI_OUT/gui_result.json, screenshots beside it."""
 import json
@@ -709,7 +709,7 @@ def new_job():
 
 
 def plunge_mill_bit():
-    """Phase 3: the plunge-mill bit that installing the addon put in the tool
+    """Phase 4: the plunge-mill bit that installing the addon put in the tool
     library, added in a new Job's panel as any bit (before 1.1 its file, in
     1.1 from the library dialog), then opened in FreeCAD's tool bit editor."""
     from freecad_plugin import PlungeRough, compat, plunge_mill, tools
@@ -790,7 +790,7 @@ def plunge_mill_bit():
 
 
 def rest_material():
-    """Phase 4: the example's operation offers the material it leaves, from its
+    """Phase 3: the example's operation offers the material it leaves, from its
     panel's button, as a solid beside it."""
     from freecad_plugin import rest
     doc = FreeCAD.openDocument(os.environ["PLUNGE_EXAMPLE_DOC"])
@@ -840,8 +840,11 @@ def main():
     result["svg_images"] = "svg" in [bytes(f).decode() for f in QtGui.QImageReader.supportedImageFormats()]
     example_document()
     new_job()
-    plunge_mill_bit()
+    # The rest material before the tool bit editor: FreeCAD 0.20's editor may
+    # raise its known stale-wrapper error after it is closed (UPSTREAM_BUGS
+    # "editor"), in whatever phase runs next; it is the last phase.
     rest_material()
+    plunge_mill_bit()
     report_errors()
     result["ok"] = True
 
