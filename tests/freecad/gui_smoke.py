@@ -263,13 +263,16 @@ UPSTREAM_BUGS = {
     # addon's page has a part in it is not established.
     "panel": [("PathOpGui.py", "in setEdit", "toolbox.addItem(page.form",
                "Internal C++ object (PySide2.QtWidgets.QWidget) already deleted.")],
-    # FreeCAD 1.0's OpenGL simulator (SimulatorGL.CAMSimulation.Activate) now
-    # and then finds a widget of its panel (its accuracy slider, its list of
-    # operations) wrapped as another (a QDialog: the voxel simulator's task
-    # form, closed just before, whose wrapper FreeCAD's voxel simulator keeps):
-    # the same PySide2 stale-wrapper family, all in FreeCAD's code. No panel
-    # opens; the user runs the command again, and so does play_gl_simulator, once.
-    "simulator": [("SimulatorGL.py", "in Activate", "form.", "'PySide2.QtWidgets.", "object has no attribute")],
+    # FreeCAD 1.0's and 1.1's OpenGL simulator (SimulatorGL.CAMSimulation.Activate)
+    # now and then finds a widget of its panel (its accuracy slider, its list
+    # of operations) wrapped as another (a QDialog: the voxel simulator's task
+    # form, closed just before, whose wrapper FreeCAD's voxel simulator keeps),
+    # or (1.1 with PySide6) its play button, just loaded, already deleted: the
+    # same stale-wrapper family, all in FreeCAD's code. No panel opens; the
+    # user runs the command again, and so does play_gl_simulator, once.
+    "simulator": [("SimulatorGL.py", "in Activate", "form.", "'PySide2.QtWidgets.", "object has no attribute"),
+                  ("SimulatorGL.py", "in Activate", "self.Connect(form.", "Internal C++ object (PySide",
+                   ") already deleted.")],
     "spin box filter": [("in eventFilter", "if event.type() == QtCore.QEvent.Type.FocusIn",
                          "QtWidgets.QWidget' object has no attribute 'type'")],
 }
