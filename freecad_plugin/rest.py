@@ -13,6 +13,7 @@ App side: never imports GUI code.
 import math
 
 import FreeCAD
+from PySide import QtCore
 from PySide.QtCore import QT_TRANSLATE_NOOP
 
 from freecad_plugin import companions, compat, planner, tools
@@ -384,10 +385,33 @@ class RestSolid:
         return None
 
 
+STOCK_COLOUR = (0.85, 0.55, 0.25)  # the rest material's top, apart from the part's grey
+DEEPEST_COLOUR = (0.30, 0.45, 0.75)  # its lowest top
+
+
+def depth_colours(shape):
+    """A colour per face of a rest solid, by the height of the top of its box:
+    stock colour at the highest, blue at the lowest (a face's top is its
+    box's, but for the bottoms, shown as the lowest). FreeCAD's headlight
+    shades the tops and sides of boxes alike in its isometric view: without
+    colours the rest reads as one flat patch there."""
+    tops = [f.BoundBox.ZMax for f in shape.Faces]
+    sides = [z for z, f in zip(tops, shape.Faces) if f.BoundBox.ZLength > 1e-6]
+    if not sides:
+        return [STOCK_COLOUR] * len(tops)
+    high, low = max(sides), min(sides)
+    span = max(high - low, 1e-9)
+
+    def mix(z):
+        s = min(1.0, max(0.0, (high - z) / span))
+        return tuple(a + (b - a) * s for a, b in zip(STOCK_COLOUR, DEEPEST_COLOUR))
+    return [mix(max(z, low)) for z in tops]
+
+
 class ViewProviderRest:
-    """The rest material's view provider: the shape shown as a Part's, in
-    stock colour (a view provider without a proxy shows nothing). Plain
-    Python: App code may make it without importing GUI code."""
+    """The rest material's view provider: the shape shown as a Part's,
+    coloured by height (depth_colours; a view provider without a proxy shows
+    nothing). Plain Python: App code may make it without importing GUI code."""
 
     def __init__(self, vobj):
         vobj.Proxy = self
@@ -395,11 +419,25 @@ class ViewProviderRest:
     def attach(self, vobj):
         self.Object = vobj.Object
 
+    def updateData(self, obj, prop):
+        # FreeCAD calls this before it rebuilds the shape's scene, and face
+        # colours take only once the scene has the faces: so, just after.
+        if prop == "Shape":
+            QtCore.QTimer.singleShot(0, lambda: self.colour(obj))
+
+    @staticmethod
+    def colour(obj):
+        try:
+            if obj.ViewObject is not None and not obj.Shape.isNull():
+                obj.ViewObject.DiffuseColor = depth_colours(obj.Shape)
+        except ReferenceError:  # deleted before the scene was drawn
+            pass
+
     def getDisplayModes(self, vobj):
-        return ["Flat Lines", "Shaded", "Wireframe"]
+        return ["Shaded", "Flat Lines", "Wireframe"]
 
     def getDefaultDisplayMode(self):
-        return "Flat Lines"  # the boxes' edges show the steps (shading alone draws one flat patch offscreen)
+        return "Shaded"  # the edges of thousands of boxes would hide the steps in black
 
     def __getstate__(self):
         return None
@@ -424,7 +462,7 @@ def make_rest_solid(op):
     RestSolid(obj, op)
     if obj.ViewObject is not None:
         ViewProviderRest(obj.ViewObject)
-        obj.ViewObject.ShapeColor = (0.85, 0.55, 0.25)  # stock, apart from the part's grey
+        obj.ViewObject.ShapeColor = STOCK_COLOUR
     obj.Label = "%s rest" % op.Label
     op.Document.recompute()
     return obj

@@ -814,15 +814,20 @@ def rest_material():
         if o.ViewObject is not None and o is not feature and o.ViewObject.Visibility and o.TypeId != "App::Origin":
             o.ViewObject.Visibility = False
     view = FreeCADGui.getDocument(doc.Name).ActiveView
-    view.viewIsometric()
+    view.viewTrimetric()  # isometric, the headlight shades tops and sides alike
     view.fitAll()
     wait(1)
     view.saveImage(os.path.join(OUT, "rest_material_3d.png"), 1000, 700, "White")
     image = QtGui.QImage(os.path.join(OUT, "rest_material_3d.png"))
-    white = QtGui.QColor("white").rgb()
-    if result["rest_solid"] is not None:  # how much of the picture the solid covers
-        samples = [image.pixel(x, y) != white for x in range(0, image.width(), 10) for y in range(0, image.height(), 10)]
-        result["rest_solid"]["drawn"] = sum(samples) / max(1, len(samples))
+    if result["rest_solid"] is not None:  # how much of the picture the solid covers, in which colours
+        pixels = [QtGui.QColor(image.pixel(x, y)) for x in range(0, image.width(), 5)
+                  for y in range(0, image.height(), 5)]
+        drawn = [c for c in pixels if (c.red(), c.green(), c.blue()) != (255, 255, 255)]
+        result["rest_solid"]["drawn"] = len(drawn) / max(1, len(pixels))
+        # Its tops in stock colour (red over blue), its deepest in blue.
+        result["rest_solid"]["stock_coloured"] = sum(c.red() > c.blue() + 40 for c in drawn) / max(1, len(drawn))
+        result["rest_solid"]["deep_coloured"] = sum(c.blue() > c.red() + 20 for c in drawn) / max(1, len(drawn))
+        result["rest_solid"]["display_mode"] = feature.ViewObject.DisplayMode
     step("rest material")
 
 

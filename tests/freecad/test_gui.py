@@ -224,6 +224,8 @@ def test_rest_material_from_the_panel(result):
     assert solid and solid["valid"] and solid["visible"], solid
     assert 0.3 * solid["stock_volume"] < solid["volume"] < solid["stock_volume"] - 1000.0, solid
     assert solid["drawn"] > 0.1, solid  # rest_material_3d.png shows it
+    # Shaded, by height: the stock's top in stock colour, the pocket's cut floor in blue.
+    assert solid["display_mode"] == "Shaded" and solid["stock_coloured"] > 0.3 and solid["deep_coloured"] > 0.02, solid
 
 
 def test_screenshots(result, out):
