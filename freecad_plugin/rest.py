@@ -395,17 +395,17 @@ def depth_colours(shape):
     box's, but for the bottoms, shown as the lowest). FreeCAD's headlight
     shades the tops and sides of boxes alike in its isometric view: without
     colours the rest reads as one flat patch there."""
-    tops = [f.BoundBox.ZMax for f in shape.Faces]
-    sides = [z for z, f in zip(tops, shape.Faces) if f.BoundBox.ZLength > 1e-6]
+    boxes = [f.BoundBox for f in shape.Faces]
+    sides = [b.ZMax for b in boxes if b.ZLength > 1e-6]
     if not sides:
-        return [STOCK_COLOUR] * len(tops)
+        return [STOCK_COLOUR] * len(boxes)
     high, low = max(sides), min(sides)
     span = max(high - low, 1e-9)
 
-    def mix(z):
+    def mix(z):  # below the lowest side's top (the bottoms) as the lowest
         s = min(1.0, max(0.0, (high - z) / span))
         return tuple(a + (b - a) * s for a, b in zip(STOCK_COLOUR, DEEPEST_COLOUR))
-    return [mix(max(z, low)) for z in tops]
+    return [mix(b.ZMax) for b in boxes]
 
 
 class ViewProviderRest:
