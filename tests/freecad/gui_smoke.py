@@ -267,11 +267,12 @@ UPSTREAM_BUGS = {
     # now and then finds a widget of its panel (its accuracy slider, its list
     # of operations) wrapped as another (a QDialog: the voxel simulator's task
     # form, closed just before, whose wrapper FreeCAD's voxel simulator keeps),
-    # or (1.1 with PySide6) its play button, just loaded, already deleted: the
-    # same stale-wrapper family, all in FreeCAD's code. No panel opens; the
+    # or (1.1 with PySide6) its play button, just loaded, already deleted; both
+    # seen with PySide2's and PySide6's messages. The same stale-wrapper
+    # family, all in FreeCAD's code. No panel opens; the
     # user runs the command again, and so does play_gl_simulator, once.
-    "simulator": [("SimulatorGL.py", "in Activate", "form.", "'PySide2.QtWidgets.", "object has no attribute"),
-                  ("SimulatorGL.py", "in Activate", "self.Connect(form.", "Internal C++ object (PySide",
+    "simulator": [("SimulatorGL.py", "in Activate", "form.", "'PySide", ".QtWidgets.", "object has no attribute"),
+                  ("SimulatorGL.py", "in Activate", "form.", "Internal C++ object (PySide",
                    ") already deleted.")],
     "spin box filter": [("in eventFilter", "if event.type() == QtCore.QEvent.Type.FocusIn",
                          "QtWidgets.QWidget' object has no attribute 'type'")],
