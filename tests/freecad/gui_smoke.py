@@ -18,7 +18,6 @@ the end. Results go to $PLUNGE_GUI_OUT/gui_result.json, screenshots beside it.""
 import json
 import math
 import os
-import re
 import sys
 import time
 import traceback
@@ -30,10 +29,13 @@ OUT = os.environ.get("PLUNGE_GUI_OUT", os.path.join(BUILD, "test-artifacts"))
 # The addon is the installed one (test_gui.py installs it into this profile's
 # Mod folder and FreeCAD loaded it at start); example_part is from the source.
 sys.path.insert(0, os.path.join(ROOT, "resources", "examples"))
+sys.path.insert(0, HERE)  # report_view
 
 import FreeCAD  # noqa: E402
 import FreeCADGui  # noqa: E402
 from PySide import QtCore, QtGui  # noqa: E402
+
+from report_view import classify  # noqa: E402
 
 result = {"ok": False, "steps": []}
 # FreeCAD's "Choose a Tool Controller" dialog should not appear; if it does, it
@@ -239,49 +241,6 @@ def click(window, at):
         wait(0.3)
 
 
-# FreeCAD's own bugs that this test sets aside (each recorded, with the step it
-# came in, in result["report_known_upstream"]); every other traceback fails it.
-# A traceback is one of them if it has all the parts of one of a bug's forms.
-UPSTREAM_BUGS = {
-    # FreeCAD 0.20's tool bit editor (PathToolBitEdit.ToolBitEditor) now and
-    # then finds a widget it has just loaded from its own .ui file already
-    # deleted, or wrapped as another (a stale PySide wrapper: its toolName a
-    # QDialogButtonBox), while it builds itself (FreeCAD's code only).
-    "editor": [("PathToolBitEdit.py", "self.form.bitParams.layout()",
-                "Internal C++ object (PySide2.QtWidgets.QWidget) already deleted."),
-               ("PathToolBitEdit.py", "in updateUI", "self.form.", "<class 'AttributeError'>: 'PySide2.QtWidgets.",
-                "object has no attribute")],
-    # FreeCAD's QuantitySpinBox helper (PathGui.py before 1.0,
-    # Path/Base/Gui/Util.py since; the same code in both) is now and then
-    # handed a deleted widget's stale wrapper instead of the event its focus
-    # filter installed on a spin box gets; seen once on 0.20, in a page of
-    # FreeCAD's own (this addon's page guards its filters: PlungeRoughGui.SpinBox).
-    # FreeCAD 0.20's operation task panel (PathOpGui.TaskPanel) now and then
-    # finds a page's form it has just loaded already deleted when it adds it
-    # to its toolbox (the same PySide2 stale-wrapper family; seen once here,
-    # opening this operation's panel a second time in a session). Whether this
-    # addon's page has a part in it is not established.
-    "panel": [("PathOpGui.py", "in setEdit", "toolbox.addItem(page.form",
-               "Internal C++ object (PySide2.QtWidgets.QWidget) already deleted.")],
-    # FreeCAD 1.0's and 1.1's OpenGL simulator (SimulatorGL.CAMSimulation.Activate)
-    # now and then finds a widget of its panel (its accuracy slider, its list
-    # of operations) wrapped as another (a QDialog: the voxel simulator's task
-    # form, closed just before, whose wrapper FreeCAD's voxel simulator keeps),
-    # or (1.1 with PySide6) its play button, just loaded, already deleted; both
-    # seen with PySide2's and PySide6's messages. The same stale-wrapper
-    # family, all in FreeCAD's code. No panel opens; the
-    # user runs the command again, and so does play_gl_simulator, up to twice.
-    "simulator": [("SimulatorGL.py", "in Activate", "form.", "'PySide", ".QtWidgets.", "object has no attribute"),
-                  ("SimulatorGL.py", "in Activate", "form.", "Internal C++ object (PySide",
-                   ") already deleted.")],
-    "spin box filter": [("in eventFilter", "if event.type() == QtCore.QEvent.Type.FocusIn",
-                         "QtWidgets.QWidget' object has no attribute 'type'")],
-}
-
-
-OLD_ONLY = {"editor", "panel"}  # seen on FreeCAD 0.20 only: set aside there only
-
-
 def report_lines():
     """The report view's lines, each with whether it shows as an error (red,
     the colour of its report highlighter in a default profile)."""
@@ -299,50 +258,6 @@ def report_lines():
 def upstream_bug_count(bug):
     """How often one of UPSTREAM_BUGS is in the report view."""
     return sum(1 for name, _ in classify(report_lines(), FreeCAD.Version()[0] == "0")[1] if name == bug)
-
-
-def upstream_bug(trace, old):
-    """Which of UPSTREAM_BUGS a traceback (its lines joined) is, or None: only
-    one whose every frame is in FreeCAD's own installed code, and the editor's
-    only on 0.20 (old), where it was seen."""
-    frames = re.findall(r'File "([^"]+)"', trace)
-    if not frames or not all(f.startswith("/usr/") and "/freecad/Mod/" in f for f in frames):
-        return None
-    for name, forms in UPSTREAM_BUGS.items():
-        if (old or name not in OLD_ONLY) and any(all(part in trace for part in parts) for parts in forms):
-            return name
-    return None
-
-
-def classify(lines, old):
-    """The report view's errors (a list of lines), and FreeCAD's own known ones
-    (old: the version is 0.x), each a (name in UPSTREAM_BUGS, its traceback's
-    lines joined)."""
-    errors, known, trace = [], [], []
-    for text, red in lines + [("", False)]:
-        if trace and (text.startswith(" ") or red and not trace[-1].startswith("<class")):
-            trace.append(text)  # the traceback's lines, up to its exception's
-            continue
-        if trace:
-            whole = "\n".join(trace)
-            bug = upstream_bug(whole, old)
-            if bug:
-                known.append((bug, whole))
-            else:
-                errors.extend(trace)
-            trace = []
-        if "Traceback" in text:
-            # A command's traceback comes after FreeCAD's line naming the command.
-            header = errors[-1:] if errors and re.search(r"Running the Python command '\w+' failed:$", errors[-1]) else []
-            del errors[len(errors) - len(header):]
-            trace = header + [text]
-        elif red and old and text.endswith("<class 'AttributeError'>: setAttr failed."):
-            # FreeCAD 0.20 itself reports this on opening any document with tool
-            # bits (its ToolBit proxies), with or without this addon; 1.0 does not.
-            pass
-        elif red:
-            errors.append(text)
-    return errors, known
 
 
 def report_errors():
