@@ -11,7 +11,7 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
-from freecad_plugin import PlungeRough, companions, rest, tools
+from freecad_plugin import PlungeRough, companions, rest, tools, uiforms
 from freecad_plugin.command import ADDON, COMMAND, ICON, MENU_TEXT, TOOL_TIP
 from freecad_plugin import compat
 from freecad_plugin.compat import PathUtils, gui_modules, gui_util
@@ -66,7 +66,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
     """The operation's own page: plungers, allowances, cycle, the plan's summary."""
 
     def getForm(self):
-        return FreeCADGui.PySideUic.loadUi(PANEL)
+        return uiforms.load(PANEL, FreeCADGui.PySideUic.loadUi)
 
     def initPage(self, obj):
         self.spins = {

@@ -576,7 +576,7 @@ def new_job():
     # Edit, untick the 6 mm plunger, Cancel: nothing changes, nothing is left over.
     names = sorted(o.Name for o in doc.Objects)
     FreeCADGui.Selection.clearSelection()
-    page = open_panel(op).featurePages[-1]
+    page, item = open_panel(op).featurePages[-1], None
     for i in range(page.form.toolControllers.count()):
         item = page.form.toolControllers.item(i)
         if "6 mm plunger" in item.text():
