@@ -38,14 +38,35 @@ def widget_classes(path):
     return classes
 
 
+def rewrapped(wrapper, cls):
+    """wrapper if it is a cls, else a cls wrapper of the same C++ object
+    (PySide2; shiboken6 hands back the registered one)."""
+    if isinstance(wrapper, cls):
+        return wrapper
+    module = shiboken()
+    return module.wrapInstance(module.getCppPointer(wrapper)[0], cls)
+
+
+def fetched(get, cls):
+    """The Qt object get() returns, as a cls wrapper. A wrapper of another
+    class is a stale one at the object's address: get() again after a garbage
+    collection, else rewrapped; a TypeError naming both when neither serves."""
+    wrapper = get()
+    if not isinstance(wrapper, cls):
+        gc.collect()
+        wrapper = rewrapped(get(), cls)
+    if not isinstance(wrapper, cls):
+        raise TypeError("PySide gave a stale %s wrapper for a %s" % (type(wrapper).__name__, cls.__name__))
+    return wrapper
+
+
 def retyped(form, path):
     """form, loaded from the .ui file at path, with each named widget's
     attribute a wrapper of its class (the same widget)."""
     for name, cls in widget_classes(path).items():
         wrapper = getattr(form, name, None)
-        if wrapper is not None and not isinstance(wrapper, cls):
-            module = shiboken()
-            setattr(form, name, module.wrapInstance(module.getCppPointer(wrapper)[0], cls))
+        if wrapper is not None:
+            setattr(form, name, rewrapped(wrapper, cls))
     return form
 
 

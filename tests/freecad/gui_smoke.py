@@ -35,7 +35,7 @@ import FreeCAD  # noqa: E402
 import FreeCADGui  # noqa: E402
 from PySide import QtCore, QtGui  # noqa: E402
 
-from report_view import classify  # noqa: E402
+from report_view import classify, read  # noqa: E402
 
 result = {"ok": False, "steps": []}
 # FreeCAD's "Choose a Tool Controller" dialog should not appear; if it does, it
@@ -242,17 +242,10 @@ def click(window, at):
 
 
 def report_lines():
-    """The report view's lines, each with whether it shows as an error (red,
-    the colour of its report highlighter in a default profile)."""
+    """The report view's lines, each with whether it shows as an error."""
     view = FreeCADGui.getMainWindow().findChild(QtGui.QTextEdit, "Report view")
     result["report_found"] = view is not None
-    lines = []
-    block = view.document().begin() if view is not None else None
-    while block is not None and block.isValid():
-        red = any(r.format.foreground().color() == QtGui.QColor(QtCore.Qt.red) for r in block.layout().formats())
-        lines.append((block.text(), red))
-        block = block.next()
-    return lines
+    return read(view.document()) if view is not None else []
 
 
 def upstream_bug_count(bug):

@@ -1,7 +1,7 @@
 """The GUI test's reading of FreeCAD's report view: which lines are errors, and
 which tracebacks are FreeCAD's own known bugs (set aside, and recorded). Plain
-Python, so that test_report_view.py checks it on report views as FreeCAD
-writes them, on every version."""
+Python but read(), so that test_report_view.py checks it on report views as
+FreeCAD writes them, on every version."""
 import re
 
 # FreeCAD's own bugs that the GUI test sets aside (each recorded, with the step
@@ -103,3 +103,19 @@ def classify(lines, old):
         elif red:
             errors.append(text)
     return errors, known
+
+
+def read(document):
+    """The lines of the report view's document, each (text, shown red: the
+    colour of its highlighter in a default profile). A line's layout is
+    fetched as a QTextLayout: PySide may hand on a stale wrapper of another
+    class at its address (a QListWidgetItem, once, in a CI run)."""
+    from PySide import QtCore, QtGui
+    from freecad_plugin import uiforms
+    red = QtGui.QColor(QtCore.Qt.red)
+    lines, block = [], document.begin()
+    while block.isValid():
+        layout = uiforms.fetched(block.layout, QtGui.QTextLayout)
+        lines.append((block.text(), any(r.format.foreground().color() == red for r in layout.formats())))
+        block = block.next()
+    return lines

@@ -5,10 +5,15 @@ It writes report_view-<FreeCAD version>.json in the current folder: the
 report view's lines from the command's on, each [text, shown red]."""
 import json
 import os
+import sys
 
 import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path[:0] = [HERE, os.path.dirname(os.path.dirname(HERE))]  # report_view, freecad_plugin
+from report_view import read  # noqa: E402
 
 
 class Failing:
@@ -35,11 +40,7 @@ def run():
 
 def record():
     view = FreeCADGui.getMainWindow().findChild(QtGui.QTextEdit, "Report view")
-    lines, block = [], view.document().begin()
-    while block.isValid():
-        red = any(r.format.foreground().color() == QtGui.QColor(QtCore.Qt.red) for r in block.layout().formats())
-        lines.append([block.text(), red])
-        block = block.next()
+    lines = [list(line) for line in read(view.document())]
     first = next(i for i, (text, _) in enumerate(lines) if "ReportView_Failing" in text)
     version = ".".join(FreeCAD.Version()[:2])
     with open(os.path.join(os.getcwd(), "report_view-%s.json" % version), "w") as f:

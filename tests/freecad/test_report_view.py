@@ -2,13 +2,14 @@
 as FreeCAD 0.20, 1.0 and 1.1 write them: tests/data/report_view/, recorded by
 report_view_capture.py. A failed command's traceback there ends with a blank
 line, then its message, red, with whatever comes next on the same line."""
+import gc
 import glob
 import json
 import os
 
 import pytest
 
-from report_view import classify
+from report_view import classify, read
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CAPTURES = sorted(glob.glob(os.path.join(HERE, "..", "data", "report_view", "report_view-*.json")))
@@ -81,3 +82,51 @@ def test_two_failures_in_a_row_are_two_bugs(path):
     once = with_frames(lines, SIMULATOR_FRAMES)[:-2]  # up to its message
     errors, known = classify(once + once, old)
     assert [bug for bug, _ in known] == ["simulator", "simulator"] and errors == []
+
+
+@pytest.fixture(scope="module")
+def qt():
+    """Qt, offscreen, for read() on a document highlighted as the report view's."""
+    os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+    from PySide import QtCore, QtGui
+    app = QtGui.QApplication.instance() or QtGui.QApplication([])
+
+    class Highlighter(QtGui.QSyntaxHighlighter):
+        def highlightBlock(self, text):  # red as FreeCAD's report highlighter shows an error
+            if "error" in text:
+                self.setFormat(0, len(text), QtGui.QColor(QtCore.Qt.red))
+
+    return QtCore, QtGui, Highlighter, app
+
+
+def report(qt, text):
+    QtCore, QtGui, Highlighter, _ = qt
+    document = QtGui.QTextDocument()
+    document.setPlainText(text)
+    highlighter = Highlighter(document)
+    highlighter.rehighlight()
+    return document, highlighter
+
+
+TEXT = "a message\nan error\n\nTraceback (most recent call last):\n  File \"x.py\", line 1\nan error again"
+FLAGS = [False, True, False, False, False, True]
+
+
+def test_read_gives_each_line_and_whether_it_shows_red(qt):
+    document, _ = report(qt, TEXT)
+    assert read(document) == list(zip(TEXT.split("\n"), FLAGS))
+
+
+def test_read_sees_past_a_stale_wrapper_at_a_lines_layout(qt):
+    """PySide handed a QListWidgetItem wrapper for a report line's layout in a
+    CI run (a stale one, of a deleted item, at the same address): read() still
+    reads that line's colour."""
+    from freecad_plugin import uiforms
+    QtCore, QtGui, _, _ = qt
+    document, _ = report(qt, TEXT)
+    sb = uiforms.shiboken()
+    address = sb.getCppPointer(document.findBlockByNumber(1).layout())[0]
+    gc.collect()  # that layout's own wrapper gone: a wrapper of another class registered there
+    stale = sb.wrapInstance(address, QtGui.QListWidgetItem)  # the line's next layout() gives it
+    assert read(document) == list(zip(TEXT.split("\n"), FLAGS))
+    del stale
