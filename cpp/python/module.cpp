@@ -9,14 +9,10 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "plunge/calls.hpp"
 #include "plunge/error.hpp"
 #include "plunge/json.hpp"
-#include "plunge/summary.hpp"
-#include "plunge/svg.hpp"
-#include "plunge/tools.hpp"
 #include "plunge/optimizer.hpp"
-#include "plunge/plan.hpp"
-#include "plunge/rest.hpp"
 #include "plunge/sequencing.hpp"
 
 namespace py = pybind11;
@@ -90,62 +86,39 @@ plunge::Progress progressOf(const py::object& callback) {
 }
 
 // The input's values go in and the plan's come out as Python objects: no
-// JSON text on either side.
+// JSON text on either side (calls.hpp, shared with the CLI's `call`).
 py::object planDict(const py::dict& input, bool svg, const py::object& progress) {
   const json value = toJson(input, "input");
   if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
     throw plunge::Error("progress: expected a callable (fraction, stage) or None");
   const plunge::Progress reporter = progressOf(progress);
   json out;
-  std::string summary;
-  std::vector<std::pair<std::string, std::string>> pictures;  // (key, SVG)
   {
     py::gil_scoped_release release;
-    const plunge::PlanInput in = plunge::planInputFromValue(value);
-    const plunge::Plan plan = plunge::plan(in, reporter);
-    out = plunge::planToValue(plan);
-    summary = plunge::planSummary(plan);
-    if (svg)
-      for (plunge::SvgView view : plunge::svgViews(in))
-        pictures.emplace_back(view == plunge::SvgView::Plan ? std::string("svg")
-                                                            : std::string("svg_") + plunge::svgViewName(view),
-                              plunge::planToSvg(in, plan, view));
+    out = plunge::planCall(value, svg, reporter);
   }
-  py::object result = fromJson(out);
-  result["summary"] = py::str(summary);
-  for (const auto& [key, picture] : pictures) result[py::str(key)] = py::str(picture);
-  return result;
+  return fromJson(out);
 }
 
-// Each non-centre-cutting tool's start-hole drill (tools.hpp), by id.
+// Each non-centre-cutting tool's start-hole drill, by id.
 py::dict startHoleTools(const py::object& tools) {
-  const std::vector<plunge::Tool> ts = plunge::toolsFromJson(toJson(tools, "tools").dump());
+  const json drills = plunge::startHoleToolsCall(toJson(tools, "tools"));
   py::dict out;
-  for (const plunge::Tool& t : ts)
-    if (!t.centerCutting) out[py::int_(t.id)] = py::int_(plunge::startHoleTool(ts, t).id);
+  for (auto it = drills.begin(); it != drills.end(); ++it) out[py::int_(std::stoi(it.key()))] = py::int_(it->get<int>());
   return out;
 }
 
-// The material left after `tool` moves along `moves` (rest.hpp): the grid as
-// in the input's "material", the tool as in its "tools", moves (x0, y0, z0,
-// x1, y1, z1); returns the grid's new "top".
-std::vector<double> sweepPy(const py::dict& material, const py::object& tool,
-                            const std::vector<std::array<double, 6>>& moves, const py::object& progress) {
-  const plunge::Tool t = plunge::toolsFromJson(json::array({toJson(tool, "tool")}).dump()).front();
-  const auto origin = material["origin"].cast<std::pair<double, double>>();
-  plunge::MaterialGrid grid;
-  grid.origin = {origin.first, origin.second};
-  grid.spacing = material["spacing"].cast<double>();
-  grid.nx = material["nx"].cast<size_t>();
-  grid.ny = material["ny"].cast<size_t>();
-  grid.top = material["top"].cast<std::vector<double>>();
-  std::vector<plunge::Move> ms;
-  ms.reserve(moves.size());
-  for (const auto& m : moves) ms.push_back({m[0], m[1], m[2], m[3], m[4], m[5]});
+// The material left after `tool` moves along `moves` (rest.hpp); returns the grid's new "top".
+py::object sweepPy(const py::dict& material, const py::object& tool, const py::object& moves,
+                   const py::object& progress) {
+  const json m = toJson(material, "material"), t = toJson(tool, "tool"), ms = toJson(moves, "moves");
   const plunge::Progress reporter = progressOf(progress);
-  py::gil_scoped_release release;
-  plunge::sweep(grid, plunge::cutterOf(t), ms, reporter);
-  return std::move(grid.top);
+  json out;
+  {
+    py::gil_scoped_release release;
+    out = plunge::sweepCall(m, t, ms, reporter);
+  }
+  return fromJson(out["top"]);
 }
 
 std::vector<int> tourOf(const std::vector<std::pair<double, double>>& points, bool closed,
@@ -200,6 +173,8 @@ PYBIND11_MODULE(plunge, m) {
   m.def("start_hole_tools", &startHoleTools, py::arg("tools"),
         "The drill of each tool that does not cut at its centre, as the planner chooses it: "
         "{tool id: drill id} for tools given as in the input's \"tools\"; ValueError when one has none.");
+  m.def("about", [] { return fromJson(plunge::aboutCall()); },
+        "What this build of the planner is: {\"planner\", \"version\", \"system\", \"floors\": the floor kinds it reads}.");
   m.def("sweep", &sweepPy, py::arg("material"), py::arg("tool"), py::arg("moves"), py::arg("progress") = py::none(),
         "Rest plunging: the material's new \"top\" after the tool (as in the input's \"tools\") moves along moves "
         "[(x0, y0, z0, x1, y1, z1)] over material (as in the input's \"material\"): each cell lowered to the tool's "

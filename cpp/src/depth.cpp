@@ -112,6 +112,10 @@ DepthSolver::DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spa
 
 double DepthSolver::stopHeight(Vec2 c, const Cutter& cutter) const {
   if (floor_.isFlat()) return floor_.height(c);
+  if (const std::optional<double> z = floor_.exactStopHeight(c, cutter)) {  // a mesh: drop-cutter
+    if (!std::isfinite(*z)) throw Error("no floor under the plunge at " + formatPoint(c));
+    return *z;
+  }
   bool converged = true;
   const double z = searchedStopHeight(c, cutter, converged);
   if (converged) return z;

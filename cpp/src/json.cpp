@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -179,9 +180,9 @@ void readTools(const json& j, PlanInput& in) {
   in.tools = toolList(j["tools"], "tools", in.notes);
 }
 
-// "material": the top of the material the operations before left, over a
-// raster (MaterialGrid).
-MaterialGrid readMaterial(const json& j) {
+}  // namespace
+
+MaterialGrid materialFromValue(const json& j) {
   if (!j.is_object()) throw Error("material: expected {\"origin\", \"spacing\", \"nx\", \"ny\", \"top\"}");
   onlyKeys(j, {"origin", "spacing", "nx", "ny", "top"}, "material: ");
   for (const char* key : {"origin", "spacing", "nx", "ny", "top"})
@@ -203,11 +204,49 @@ MaterialGrid readMaterial(const json& j) {
   return g;
 }
 
+namespace {
+
+// "floor": {"mesh": {"vertices": [[x, y, z], ...], "triangles": [[i, j, k], ...],
+// "deviation": mm}}; the indices are checked against the vertices by the floor
+// itself (mesh_floor.hpp).
+FloorMesh readMesh(const json& m) {
+  if (!m.is_object()) throw Error("floor.mesh: expected {\"vertices\", \"triangles\", \"deviation\"}");
+  onlyKeys(m, {"vertices", "triangles", "deviation"}, "floor.mesh: ");
+  for (const char* key : {"vertices", "triangles", "deviation"})
+    if (!m.contains(key)) throw Error(std::string("floor.mesh.") + key + ": required");
+  FloorMesh mesh;
+  mesh.deviation = number(m["deviation"], "floor.mesh.deviation");
+  const json& vs = m["vertices"];
+  if (!vs.is_array()) throw Error("floor.mesh.vertices: expected a list of [x, y, z]");
+  mesh.vertices.reserve(vs.size());
+  for (size_t i = 0; i < vs.size(); ++i) {
+    const std::string what = "floor.mesh.vertices[" + std::to_string(i) + "]";
+    if (!vs[i].is_array() || vs[i].size() != 3) throw Error(what + ": expected [x, y, z]");
+    mesh.vertices.push_back({number(vs[i][0], what), number(vs[i][1], what), number(vs[i][2], what)});
+  }
+  const json& ts = m["triangles"];
+  if (!ts.is_array()) throw Error("floor.mesh.triangles: expected a list of [i, j, k] vertex indices");
+  mesh.triangles.reserve(ts.size());
+  for (size_t i = 0; i < ts.size(); ++i) {
+    const std::string what = "floor.mesh.triangles[" + std::to_string(i) + "]";
+    if (!ts[i].is_array() || ts[i].size() != 3) throw Error(what + ": expected [i, j, k]");
+    std::array<std::uint32_t, 3> t{};
+    for (size_t k = 0; k < 3; ++k) {
+      if (!ts[i][k].is_number_integer() || ts[i][k].get<long long>() < 0 ||
+          ts[i][k].get<long long>() > std::numeric_limits<std::uint32_t>::max())
+        throw Error(what + ": expected vertex indices (whole numbers from 0)");
+      t[k] = ts[i][k].get<std::uint32_t>();
+    }
+    mesh.triangles.push_back(t);
+  }
+  return mesh;
+}
+
 Floor readFloor(const json& j) {
   if (!j.contains("floor") || !j["floor"].is_object()) throw Error("floor: required, e.g. {\"z\": -10}");
   const json& f = j["floor"];
-  onlyKeys(f, {"z", "expression", "brep"}, "floor: ");
-  if (f.size() != 1) throw Error("floor: give exactly one of z, expression, brep");
+  onlyKeys(f, {"z", "expression", "brep", "mesh"}, "floor: ");
+  if (f.size() != 1) throw Error("floor: give exactly one of z, expression, brep, mesh");
   Floor floor;
   if (f.contains("z")) {
     floor.kind = Floor::Kind::Flat;
@@ -215,6 +254,9 @@ Floor readFloor(const json& j) {
   } else if (f.contains("expression")) {
     floor.kind = Floor::Kind::Expression;
     floor.expression = stringOf(f["expression"], "floor.expression");
+  } else if (f.contains("mesh")) {
+    floor.kind = Floor::Kind::Mesh;
+    floor.mesh = readMesh(f["mesh"]);
   } else {
     if (!f["brep"].is_string()) throw Error("floor.brep: expected a file name");
     floor.kind = Floor::Kind::Brep;
@@ -309,9 +351,11 @@ json parsed(const std::string& text, const std::string& what) {
 
 }  // namespace
 
-std::vector<Tool> toolsFromJson(const std::string& text) {
+std::vector<Tool> toolsFromJson(const std::string& text) { return toolsFromValue(parsed(text, "tools: ")); }
+
+std::vector<Tool> toolsFromValue(const json& value) {
   std::vector<std::string> notes;
-  return toolList(parsed(text, "tools: "), "tools", notes);
+  return toolList(value, "tools", notes);
 }
 
 PlanInput planInputFromJson(const std::string& text) { return planInputFromValue(parsed(text, "")); }
@@ -354,7 +398,7 @@ PlanInput planInputFromValue(const json& j) {
       in.floor.sections.push_back(std::move(s));
     }
   }
-  if (j.contains("material")) in.material = readMaterial(j["material"]);
+  if (j.contains("material")) in.material = materialFromValue(j["material"]);
   readTools(j, in);
   in.floor.surface = readFloor(j);
   readOptionObjects(j, in);
@@ -363,14 +407,16 @@ PlanInput planInputFromValue(const json& j) {
 }
 
 PlanInput readPlanInput(const std::string& path) {
+  // UTF-8 paths: on Windows a narrow path would be read in the ANSI code page.
+  const std::filesystem::path file = std::filesystem::u8path(path);
   std::error_code ec;
-  std::ifstream f(path, std::ios::binary);
-  if (!f || std::filesystem::is_directory(path, ec)) throw Error("cannot read " + path);
+  std::ifstream f(file, std::ios::binary);
+  if (!f || std::filesystem::is_directory(file, ec)) throw Error("cannot read " + path);
   std::ostringstream text;
   text << f.rdbuf();
   PlanInput in = planInputFromJson(text.str());
-  const std::filesystem::path folder = std::filesystem::absolute(path, ec).parent_path();
-  in.baseDir = ec ? std::filesystem::path(path).parent_path().string() : folder.string();
+  const std::filesystem::path folder = std::filesystem::absolute(file, ec).parent_path();
+  in.baseDir = ec ? file.parent_path().u8string() : folder.u8string();
   if (in.baseDir.empty()) in.baseDir = ".";
   return in;
 }

@@ -22,6 +22,7 @@
 #include "plunge/error.hpp"
 #include "floor.hpp"
 #include "grid.hpp"
+#include "mesh_floor.hpp"
 #include "packing.hpp"
 #include "polygon.hpp"
 #include "region.hpp"
@@ -41,6 +42,7 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
 std::unique_ptr<FloorSurface> makeFloor(const PlanInput& in) {
   if (in.floor.surface.kind == Floor::Kind::Flat) return makeFlatFloor(in.floor.surface.z);
   if (in.floor.surface.kind == Floor::Kind::Expression) return makeExpressionFloor(in.floor.surface.expression);
+  if (in.floor.surface.kind == Floor::Kind::Mesh) return makeMeshFloor(in.floor.surface.mesh);
   return makeBrepFloor(resolveInputPath(in, in.floor.surface.brep));
 }
 

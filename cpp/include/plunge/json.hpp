@@ -16,6 +16,10 @@ PlanInput readPlanInput(const std::string& path);
 
 // A list of tools as in the input's "tools" (ids as given, not yet checked).
 std::vector<Tool> toolsFromJson(const std::string& text);
+std::vector<Tool> toolsFromValue(const nlohmann::json& value);
+// The input's "material": the top of the material the operations before left,
+// over a raster.
+MaterialGrid materialFromValue(const nlohmann::json& value);
 
 // The input's options by their JSON names; each throws plunge::Error naming the
 // key and the names it accepts.

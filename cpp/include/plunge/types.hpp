@@ -3,6 +3,7 @@
 // with no behaviour; it depends on geometry alone, so that every module can take
 // these types without including the pipeline (plan.hpp).
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -93,11 +94,22 @@ struct SelectionOptions {
 
 // --- the input -----------------------------------------------------------------
 
+// A floor given as triangles (the FreeCAD addon's tessellation of the selected
+// faces): vertices (x, y, z), triangles as three vertex indices, and the
+// mesh's largest distance from the true surface, by which every stop is kept
+// further off it (mesh_floor.hpp).
+struct FloorMesh {
+  std::vector<std::array<double, 3>> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  double deviation = 0.0;
+};
+
 struct Floor {
-  enum class Kind { Flat, Expression, Brep } kind = Kind::Flat;
+  enum class Kind { Flat, Expression, Brep, Mesh } kind = Kind::Flat;
   double z = 0.0;
   std::string expression;
   std::string brep;  // a BREP file; a relative path starts at PlanInput::baseDir (resolveInputPath)
+  FloorMesh mesh;
 };
 
 // The pocket's cross-section at a height above its floor, where it is wider
