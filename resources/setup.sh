@@ -13,16 +13,7 @@ PACKAGES="cmake g++ make pkg-config
   pybind11-dev python3-dev libgtest-dev python3-pytest python3-shapely python3-jsonschema python3-scipy
   python3-numpy freecad xvfb xauth libgl1-mesa-dri"
 
-installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
-install_missing() {
-  missing=""
-  for p in "$@"; do installed "$p" || missing="$missing $p"; done
-  [ -n "$missing" ] || return 0
-  echo "setup: installing$missing"
-  if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=""; fi
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive DEBCONF_NOWARNINGS=yes $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
-}
+. "$ROOT/resources/apt.sh"
 install_missing $PACKAGES
 # FreeCAD on Qt 6 (1.1, Debian forky) draws check marks and icons from SVG:
 # Qt 6's SVG image plugin is only recommended by its GUI library, and

@@ -101,6 +101,8 @@ int main(int argc, char** argv) {
   argv = pointers.data();
 #endif
   CLI::App app{"Plunge roughing planner: plunge positions, order and depths for a pocket"};
+  // The same options everywhere: no "/option" on Windows, where it is a path.
+  app.allow_windows_style_options(false);
   app.require_subcommand(1);
   std::string input, output = "-", svg, gcode;
   CLI::App* planCmd = app.add_subcommand("plan", "Plan the plunges of a pocket described in a JSON file");

@@ -38,12 +38,7 @@ COMMANDS=$(awk '/^```sh$/ {on=1; next} on && /^```/ {exit} on && NF' "$ROOT/READ
 MAIN_CMD=$(printf '%s\n' "$COMMANDS" | sed -n 1p)
 TEST_CMD=$(printf '%s\n' "$COMMANDS" | sed -n 2p)
 
-# This machine's Debian mirror (deb822 sources first, then sources.list).
-mirror() {
-  m=$(grep -hs '^URIs:' /etc/apt/sources.list.d/*.sources | awk '{print $2}' | grep -v security | head -n1)
-  [ -n "$m" ] || m=$(grep -hs '^deb ' /etc/apt/sources.list | awk '{print $2}' | grep -v security | head -n1)
-  echo "${m:-http://deb.debian.org/debian}"
-}
+. "$ROOT/resources/apt.sh"  # mirror
 
 mounted_under() { awk -v d="$1" '$2 == d || index($2, d "/") == 1 {print $2}' /proc/mounts; }
 

@@ -16,14 +16,8 @@ ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 # The project's packages (setup.sh) and Debian's clang with its sanitizer and
 # libFuzzer runtimes.
 sh "$ROOT/resources/setup.sh" --packages-only
-missing=""
-for p in clang libclang-rt-dev; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
-done
-if [ -n "$missing" ]; then
-  apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $missing
-fi
+. "$ROOT/resources/apt.sh"
+install_missing clang libclang-rt-dev
 B="$ROOT/build-sanitize"
 cmake -S "$ROOT" -B "$B" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DPLUNGE_SANITIZE=ON -DPLUNGE_FUZZ=ON -DPLUNGE_BUILD_PYTHON=OFF -DPLUNGE_WERROR="${PLUNGE_WERROR:-OFF}" >/dev/null

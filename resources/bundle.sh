@@ -1,0 +1,117 @@
+#!/bin/sh
+# The bundles for FreeCAD users without a compiler: one zip per platform, with
+# one folder PlungeRough/ (the addon as FreeCAD's Mod folder wants it) and the
+# planner program for that platform in PlungeRough/bin/, fully static, built
+# without OpenCASCADE (floors of faces go to it as meshes) and without Python.
+#
+#   sh resources/bundle.sh linux     # -> dist/PlungeRough-linux-x86_64.zip
+#   sh resources/bundle.sh windows   # -> dist/PlungeRough-windows-x86_64.zip (MinGW-w64)
+#
+# Runs as root on Debian 12 or 13 and installs what it needs (idempotent).
+# Clipper and muParser, which Debian ships only as shared Linux libraries,
+# are built here from Debian's own source packages (apt-get source, with a
+# package list of its own: the machine's apt configuration stays as it is);
+# the header-only libraries are Debian's. Nothing else is downloaded.
+# build-bundle/ keeps the sources and builds for the next run.
+set -eu
+PLATFORM=${1:-}
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+. "$ROOT/resources/apt.sh"
+die() { echo "bundle: $*" >&2; exit 1; }
+
+case $PLATFORM in
+  linux) CXX=g++ AR=ar STRIP=strip TOOLCHAIN="" EXE=plunge-rough
+         EXTRA="" ;;
+  windows) CXX=x86_64-w64-mingw32-g++-posix AR=x86_64-w64-mingw32-ar STRIP=x86_64-w64-mingw32-strip
+           TOOLCHAIN="-DCMAKE_TOOLCHAIN_FILE=$ROOT/resources/mingw-w64.cmake" EXE=plunge-rough.exe
+           EXTRA="g++-mingw-w64-x86-64-posix binutils-mingw-w64-x86-64" ;;
+  *) die "usage: sh resources/bundle.sh linux|windows" ;;
+esac
+install_missing cmake make g++ binutils dpkg-dev python3 libboost-dev libcgal-dev nlohmann-json3-dev \
+  libcli11-dev libeigen3-dev $EXTRA
+
+WORK=$ROOT/build-bundle
+OUT=$WORK/$PLATFORM
+mkdir -p "$WORK/sources" "$OUT"
+
+# Debian's source packages of Clipper and muParser, for this machine's release.
+sources() { ls -d "$WORK"/sources/libpolyclipping-*/ "$WORK"/sources/muparser-*/ 2>/dev/null | wc -l; }
+if [ "$(sources)" -ne 2 ]; then
+  codename=$(. /etc/os-release && echo "$VERSION_CODENAME")
+  apt=$WORK/apt
+  mkdir -p "$apt/lists/partial" "$apt/cache/archives/partial"
+  echo "deb-src [signed-by=/usr/share/keyrings/debian-archive-keyring.gpg] $(mirror) $codename main" \
+    >"$apt/sources.list"
+  set -- -o Dir::Etc::SourceList="$apt/sources.list" -o Dir::Etc::SourceParts="$apt/none" \
+    -o Dir::State::Lists="$apt/lists" -o Dir::Cache="$apt/cache" -o APT::Sandbox::User=root
+  echo "bundle: Debian's sources of Clipper and muParser ($codename)"
+  apt-get "$@" -qq update
+  (cd "$WORK/sources" && apt-get "$@" -qq source libpolyclipping-dev muparser >/dev/null)
+  [ "$(sources)" -eq 2 ] || die "apt-get source did not unpack libpolyclipping and muparser"
+fi
+CLIPPER=$(ls -d "$WORK"/sources/libpolyclipping-*/ | head -n1)
+MUPARSER=$(ls -d "$WORK"/sources/muparser-*/ | head -n1)
+
+# The header-only libraries, as links in one folder: the cross-compiler must
+# see these and not the rest of /usr/include (glibc's headers).
+HEADERS=$OUT/headers
+rm -rf "$HEADERS"
+mkdir -p "$HEADERS"
+for h in boost CGAL nlohmann CLI; do ln -s "/usr/include/$h" "$HEADERS/$h"; done
+ln -s /usr/include/eigen3/Eigen "$HEADERS/Eigen"
+cp "$CLIPPER/cpp/clipper.hpp" "$MUPARSER"/include/*.h "$HEADERS/"
+
+# Clipper and muParser as static libraries, for the target.
+DEPS=$OUT/deps
+if [ ! -s "$DEPS/lib/libpolyclipping.a" ] || [ ! -s "$DEPS/lib/libmuparser.a" ]; then
+  echo "bundle: building Clipper and muParser for $PLATFORM"
+  rm -rf "$DEPS" && mkdir -p "$DEPS/lib" "$DEPS/obj"
+  $CXX -O2 -std=c++17 -c "$CLIPPER/cpp/clipper.cpp" -o "$DEPS/obj/clipper.o"
+  $AR rcs "$DEPS/lib/libpolyclipping.a" "$DEPS/obj/clipper.o"
+  for f in muParser muParserBase muParserBytecode muParserCallback muParserError muParserInt muParserTokenReader; do
+    $CXX -O2 -std=c++17 -DMUPARSER_STATIC -I"$MUPARSER/include" -c "$MUPARSER/src/$f.cpp" -o "$DEPS/obj/$f.o"
+  done
+  $AR rcs "$DEPS/lib/libmuparser.a" "$DEPS"/obj/muParser*.o
+fi
+
+# The planner program, and the addon's files (CMake's freecad_addon component).
+cmake -S "$ROOT" -B "$OUT/build" $TOOLCHAIN -DCMAKE_BUILD_TYPE=Release -DPLUNGE_PORTABLE=ON \
+  -DPLUNGE_HEADERS="$HEADERS" -DPLUNGE_DEPS="$DEPS" -DPLUNGE_WERROR="${PLUNGE_WERROR:-OFF}" >/dev/null
+cmake --build "$OUT/build" -j"$(nproc)" --target plunge-rough
+STAGE=$OUT/stage
+rm -rf "$STAGE"
+cmake --install "$OUT/build" --component freecad_addon --prefix "$STAGE" >/dev/null
+PROGRAM=$STAGE/PlungeRough/bin/$EXE
+[ -f "$PROGRAM" ] || die "the install put no $EXE in PlungeRough/bin"
+$STRIP "$PROGRAM"
+
+# Fully static: no loader and no library on Linux; Windows' own DLLs only.
+if [ "$PLATFORM" = linux ]; then
+  readelf -lW "$PROGRAM" | grep -q INTERP && die "$EXE asks for a dynamic loader"
+  readelf -d "$PROGRAM" | grep -q NEEDED && die "$EXE needs shared libraries: $(readelf -d "$PROGRAM" | grep NEEDED)"
+else
+  dlls=$(x86_64-w64-mingw32-objdump -p "$PROGRAM" | sed -n 's/^.*DLL Name: //p' | tr -d '\r')
+  for d in $dlls; do
+    case $(echo "$d" | tr 'A-Z' 'a-z') in
+      kernel32.dll|msvcrt.dll|shell32.dll|user32.dll|advapi32.dll|ws2_32.dll|api-ms-win-*) ;;
+      *) die "$EXE imports $d, which is not one of Windows' own DLLs" ;;
+    esac
+  done
+fi
+find "$STAGE" -name __pycache__ -prune -exec rm -rf {} +
+find "$STAGE" \( -name '*.so' -o -name '*.so.*' -o -name '*.pyd' \) | grep -q . && die "a compiled module in the bundle"
+
+mkdir -p "$ROOT/dist"
+ZIP=$ROOT/dist/PlungeRough-$PLATFORM-x86_64.zip
+python3 - "$STAGE" "$ZIP" <<'PY'
+import os, sys, zipfile
+stage, out = sys.argv[1], sys.argv[2]
+with zipfile.ZipFile(out + ".part", "w", zipfile.ZIP_DEFLATED) as z:
+    for folder, dirs, files in os.walk(stage):
+        dirs.sort()
+        for name in sorted(files):
+            path = os.path.join(folder, name)
+            z.write(path, os.path.relpath(path, stage))  # keeps the execute bit (external_attr)
+os.replace(out + ".part", out)
+PY
+echo "bundle: $ZIP ($(du -k "$ZIP" | cut -f1) kB; $EXE $(du -k "$PROGRAM" | cut -f1) kB)"
