@@ -267,14 +267,24 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         workdir = plan_folder(obj)
         notes = []
         try:
-            data = build_input(obj, tcs, faces, workdir, notes)
+            plunger = planner.planner()
+            data = build_input(obj, tcs, faces, workdir, notes, plunger.floors)
             progress = planner.PlanProgress(obj.Label)
             try:
-                plan = planner.planner().plan(data, svg=True, progress=progress)
+                plan = plunger.plan(data, svg=True, progress=progress)
             finally:
                 progress.stop()
+            write_pictures(workdir, plan)
+            companions.hold_plan_data(obj, {"input": data, "plan": plan})
+            report_plan(obj, plan, notes, plunger.name)
+            own_tc, problem = companions.activate_companions(obj, plan, tcs)
         except ValueError as e:
             _report(obj, str(e))
+            return
+        except planner.PlannerFailed as e:  # crashed or killed: said, nothing cut, planned again
+            _report(obj, "%s: %s" % (e, translate("PlungeRough", "nothing is cut until it plans again "
+                                                     "(the next recompute)")))
+            FreeCAD.addDocumentObserver(_PlanAgain(obj))
             return
         except (planner.ABORT, RuntimeError) as e:  # the user aborted (Esc): said, nothing cut
             if not planner.is_abort(e):
@@ -283,10 +293,6 @@ class ObjectPlungeRough(PathOp.ObjectOp):
                                    "(the next recompute)"), error=False)
             FreeCAD.addDocumentObserver(_PlanAgain(obj))
             return
-        write_pictures(workdir, plan)
-        companions.hold_plan_data(obj, {"input": data, "plan": plan})
-        report_plan(obj, plan, notes)
-        own_tc, problem = companions.activate_companions(obj, plan, tcs)
         if own_tc is None:
             _report(obj, problem)
             obj.PlanData = ""
@@ -347,7 +353,7 @@ def model_of(obj):
     return shapes[0] if len(shapes) == 1 else Part.makeCompound(shapes)
 
 
-def build_input(obj, tcs, faces, workdir, notes=None):
+def build_input(obj, tcs, faces, workdir, notes=None, floors=("z", "brep")):
     """The planner's input (docs/plan-format.md) for the operation's properties,
     its plunger tool controllers (largest first) and its floor faces (with the
     part's fillets and open sides, geometry.pocket). Writes nothing but a
@@ -374,7 +380,7 @@ def build_input(obj, tcs, faces, workdir, notes=None):
         "time_model": tools.time_model(tcs[0], getattr(obj, "ToolChangeTime", 20.0)),
         "top_z": obj.StartDepth.Value,
         "safe_z": obj.SafeHeight.Value,
-        "floor": geometry.floor_spec(pocket, obj.FinalDepth.Value, workdir),
+        "floor": geometry.floor_spec(pocket, obj.FinalDepth.Value, workdir, floors),
         # FinalDepth is the deepest any plunge goes.
         "final_depth": obj.FinalDepth.Value,
         # The chords of a discretised free-form wall may lie off it by the
@@ -420,13 +426,15 @@ def plan_folder(obj, create=True):
     return workdir
 
 
-def report_plan(obj, plan, notes=()):
+def report_plan(obj, plan, notes=(), planned_by=None):
     """The plan's summary on the operation (with what it says of the pocket:
-    fillets added, open sides), its stock and warnings in the report view."""
+    fillets added, open sides, the planner that made it), its stock and
+    warnings in the report view."""
     warnings = list(plan.get("warnings", []))
     post_warning = canned_cycle_warning(obj)
     if post_warning:
         warnings.append(post_warning)
+    notes = list(notes) + ([translate("PlungeRough", "planned by %s") % planned_by] if planned_by else [])
     text = plan["summary"]  # the planner's own words (the CLI's summary, with the plungers chosen)
     obj.Summary = "; ".join([text] + warnings + list(notes))
     FreeCAD.Console.PrintMessage("%s: %s\n" % (obj.Label, text))

@@ -155,8 +155,8 @@ def syncCompanions(obj):
     wanted, before = [], []
     try:
         drills = start_hole_tcs(tcs)
-    except ValueError:
-        drills = []  # a bad bit: the operation reports it when it plans
+    except (ValueError, planner.PlannerFailed):
+        drills = []  # a bad bit, or no planner: the operation reports it when it plans
     for tc, holes in [(d, True) for d in drills] + [(tc, False) for tc in tcs[1:]]:
         comp = existing.pop((tc, holes), None)
         if comp is None:

@@ -20,6 +20,8 @@ import tempfile
 import FreeCAD
 import Part
 
+from freecad_plugin import floor_mesh
+
 
 class GeometryError(ValueError):
     """The selection cannot be planned; the message says why."""
@@ -444,14 +446,18 @@ def _open_sides(result, model, boundary, is_open, margin, z, top):
     return boundary
 
 
-def floor_spec(pocket, final_depth, workdir=None):
+def floor_spec(pocket, final_depth, workdir=None, floors=("z", "brep")):
     """The planner's "floor": flat at final_depth when every floor face (and cap)
-    is one horizontal plane, else the faces as a BREP file (written to workdir)."""
+    is one horizontal plane, else the faces as a BREP file (written to workdir)
+    for a planner that reads them (floors: the kinds it reads, planner.py),
+    or as a mesh."""
     faces = [f for _, f in pocket.faces]
     if all(is_horizontal_plane(f) for f in faces):
         heights = {round(f.BoundBox.ZMin, 6) for f in faces + pocket.caps}
         if len(heights) == 1:
             return {"z": final_depth}
+    if "brep" not in floors:
+        return {"mesh": floor_mesh.floor_mesh(faces + pocket.caps)}
     compound = Part.makeCompound([f.copy() for f in faces + pocket.caps])
     if workdir is None:
         workdir = tempfile.mkdtemp(prefix="plungerough-")

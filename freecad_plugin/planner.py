@@ -1,47 +1,260 @@
-"""The compiled planner as the addon uses it: the `plunge` module beside the
-addon, and FreeCAD's progress indicator reporting (and cancelling) a plan.
+"""The planner as the addon uses it, and FreeCAD's progress indicator reporting
+(and cancelling) a plan.
+
+The planner is a program the addon runs for each call (`plunge-rough call`:
+JSON in, JSON out, progress on stderr, docs/cli.md), out of FreeCAD's
+process: a crash of the planner cannot take FreeCAD down, and Esc stops it at
+once. It is looked for, in this order:
+
+1. the environment variable PLUNGE_ROUGH_PLANNER, a command line (a test runs
+   `wine /path/plunge-rough.exe` so);
+2. the preference PlannerPath (Preferences/Mod/PlungeRough), a program's path;
+3. the addon's own bin/ (a bundle, or the README's install);
+4. the compiled module `plunge` beside the addon, planning in FreeCAD's process.
 
 App side: never imports GUI code.
 """
+import json
 import os
+import shlex
+import signal
+import stat
+import subprocess
+import sys
+import threading
+import time
 
 import FreeCAD
 
 ADDON = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ENVIRONMENT = "PLUNGE_ROUGH_PLANNER"
+PREFERENCES = "User parameter:BaseApp/Preferences/Mod/PlungeRough"
+PREFERENCE = "PlannerPath"
+PROGRAM = "plunge-rough.exe" if os.name == "nt" else "plunge-rough"
+
+# What FreeCAD raises when the user aborts (not an Exception).
+ABORT = getattr(FreeCAD.Base, "FreeCADAbort", KeyboardInterrupt)
+
+
+class PlannerFailed(RuntimeError):
+    """The planner program crashed, was killed or could not be started: said in
+    the report view, nothing is cut, and the operation plans again at the next
+    recompute."""
+
+
+def bundle_name():
+    """The bundle for this machine, or None where there is none (macOS)."""
+    if sys.platform.startswith("win"):
+        return "PlungeRough-windows-x86_64.zip"
+    if sys.platform.startswith("linux"):
+        return "PlungeRough-linux-x86_64.zip"
+    return None
 
 
 def install_command(addon=ADDON):
     """The one command that builds the planner and installs it (and the
     plunge-mill bits) for this FreeCAD, from a clone of the repository (an
-    Addon Manager install is one); None for an installed copy, which has no
-    sources to build from."""
-    if not os.path.exists(os.path.join(addon, "resources", "setup.sh")):
+    Addon Manager install is one) on Debian or Ubuntu; None for an installed
+    copy, which has no sources to build from, and away from Debian."""
+    if not os.path.exists(os.path.join(addon, "resources", "setup.sh")) or not os.path.exists("/etc/debian_version"):
         return None
     return "sh '%s/resources/install_addon.sh' --build" % addon
 
 
 def missing_planner_message(error=None, addon=ADDON):
-    """What the user reads when the compiled planner is not beside the addon."""
+    """What the user reads when no planner is found: the bundle to get for
+    this platform and where it goes, and on Debian or Ubuntu the build command."""
     why = " (%s)" % error if error else ""
+    bundle = bundle_name()
+    if bundle:
+        get = ("get %s from PlungeRough's releases and unzip it into FreeCAD's Mod folder (%s), replacing this "
+               "folder: it holds the addon and its planner" % (bundle, os.path.dirname(addon)))
+    else:
+        get = "build the planner from source (docs/install.md: untested on this system)"
+    message = "the planner is not installed: no %s in %s/bin and no plunge module beside the addon%s: %s" % (
+        PROGRAM, addon, why, get)
     command = install_command(addon)
     if command:
-        return ("the compiled planner (the plunge module) is not installed beside the addon in %s%s: build and "
-                "install it for this FreeCAD, as root on Debian: %s" % (addon, why, command))
-    return ("the compiled planner (the plunge module) is not installed beside the addon in %s%s: install the addon "
-            "again from a clone of PlungeRough (its README's main command)" % (addon, why))
+        message += "; or build and install it for this FreeCAD, as root on Debian: %s" % command
+    return message
+
+
+# ---------------------------------------------------------------- the program
+
+def _run(argv, request, progress=None):
+    """One call of the planner program: the request's JSON on its stdin, its
+    answer's on stdout, "progress FRACTION STAGE" lines on stderr. progress is
+    called about every 0.1 s; when it raises (the user's abort) or returns
+    False, the program is killed. A ValueError carries the planner's own
+    message for bad input; PlannerFailed says how the program ended otherwise."""
+    flags = getattr(subprocess, "CREATE_NO_WINDOW", 0)  # no console window flashing up on Windows
+    try:
+        proc = subprocess.Popen(argv, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                creationflags=flags)
+    except OSError as e:
+        raise PlannerFailed("the planner %s could not be started: %s" % (argv[0], e.strerror or e))
+    payload = json.dumps(request).encode("utf-8")
+    out, messages, latest = [], [], [0.0, "starting the planner"]
+
+    def write():
+        try:
+            proc.stdin.write(payload)
+            proc.stdin.close()
+        except OSError:  # it ended before reading everything: its exit says why
+            pass
+
+    def read_errors():
+        for raw in proc.stderr:
+            line = raw.decode("utf-8", "replace").rstrip("\r\n")
+            if line.startswith("progress "):
+                parts = line.split(" ", 2)
+                try:
+                    latest[:] = [float(parts[1]), parts[2] if len(parts) > 2 else ""]
+                except ValueError:
+                    messages.append(line)
+            elif line:
+                messages.append(line)
+
+    threads = [threading.Thread(target=write, daemon=True), threading.Thread(target=read_errors, daemon=True),
+               threading.Thread(target=lambda: out.append(proc.stdout.read()), daemon=True)]
+    for t in threads:
+        t.start()
+    try:
+        while proc.poll() is None:
+            if progress is not None and progress(latest[0], latest[1]) is False:
+                raise ValueError("planning cancelled")
+            try:
+                proc.wait(timeout=0.1)
+            except subprocess.TimeoutExpired:
+                pass
+    finally:
+        if proc.poll() is None:  # cancelled (Esc, Ctrl+C): stopped at once
+            proc.kill()
+            proc.wait()
+        for t in threads:
+            t.join(timeout=5)
+    code = proc.returncode
+    if code == 0:
+        try:
+            return json.loads(out[0].decode("utf-8") if out else "")
+        except ValueError:
+            raise PlannerFailed("the planner %s gave an answer that is not JSON" % argv[0])
+    said = [m for m in messages if m.startswith("plunge-rough: ")]
+    if code == 2 and said:  # bad input, in the planner's own words
+        raise ValueError(said[-1][len("plunge-rough: error: "):] if said[-1].startswith("plunge-rough: error: ")
+                         else said[-1])
+    raise PlannerFailed("the planner %s %s%s" % (argv[0], _ended(code), (": " + messages[-1]) if messages else ""))
+
+
+def _ended(code):
+    """How a program ended, for people."""
+    if code < 0:
+        try:
+            name = signal.Signals(-code).name
+        except ValueError:
+            name = "signal %d" % -code
+        return "crashed (%s)" % name if -code in (4, 6, 7, 8, 11) else "was stopped (%s)" % name
+    if os.name == "nt" and code >= 0xC0000000:
+        return "crashed (Windows exception 0x%08X)" % code
+    return "failed with exit status %d" % code
+
+
+class Program:
+    """The planner program, run once per call."""
+
+    def __init__(self, argv, where):
+        self.argv = list(argv)
+        self.where = where  # how it was found, for the report view
+        self._about = None
+
+    def about(self):
+        if self._about is None:
+            self._about = _run(self.argv + ["call"], {"call": "about"})
+        return self._about
+
+    @property
+    def name(self):
+        return "%s, program %s (%s)" % (self.about().get("planner", "PlungeRough"), " ".join(self.argv), self.where)
+
+    @property
+    def floors(self):
+        return self.about().get("floors", [])
+
+    def plan(self, data, svg=False, progress=None):
+        return _run(self.argv + ["call"], {"call": "plan", "input": data, "svg": bool(svg)}, progress)
+
+    def start_hole_tools(self, tools):
+        return {int(k): v for k, v in _run(self.argv + ["call"], {"call": "start_hole_tools", "tools": tools}).items()}
+
+    def sweep(self, material, tool, moves, progress=None):
+        return _run(self.argv + ["call"], {"call": "sweep", "material": material, "tool": tool,
+                                           "moves": [list(m) for m in moves]}, progress)["top"]
+
+
+class Module:
+    """The compiled module beside the addon, planning in FreeCAD's process."""
+
+    def __init__(self, module):
+        self.module = module
+        info = module.about()
+        self.floors = info["floors"]
+        self.name = "%s, module %s" % (info["planner"], module.__file__)
+
+    def plan(self, data, svg=False, progress=None):
+        return self.module.plan(data, svg=svg, progress=progress)
+
+    def start_hole_tools(self, tools):
+        return self.module.start_hole_tools(tools)
+
+    def sweep(self, material, tool, moves, progress=None):
+        return self.module.sweep(material, tool, moves, progress)
+
+
+def _executable(path):
+    """path, with the execute bit a ZIP install loses given back; False when it
+    is no file."""
+    if not os.path.isfile(path):
+        return False
+    if os.name != "nt" and not os.access(path, os.X_OK):
+        try:
+            os.chmod(path, os.stat(path).st_mode | stat.S_IXUSR | stat.S_IXGRP | stat.S_IXOTH)
+        except OSError:
+            return False
+    return True
+
+
+_found = {}
 
 
 def planner():
-    """The core planner (the compiled `plunge` module beside the addon)."""
+    """The planner, where users put it (the module's docstring); ValueError
+    saying what to install when there is none, or what is wrong with the one
+    named by the environment or the preference."""
+    command = os.environ.get(ENVIRONMENT, "").strip()
+    if command:
+        argv = shlex.split(command, posix=os.name != "nt")
+        return _cached(argv, "%s" % ENVIRONMENT)
+    path = FreeCAD.ParamGet(PREFERENCES).GetString(PREFERENCE, "").strip()
+    if path:
+        if not _executable(path):
+            raise ValueError("the planner set in the preferences (%s) is not a program: %s" % (PREFERENCE, path))
+        return _cached([path], "the preference %s" % PREFERENCE)
+    bundled = os.path.join(ADDON, "bin", PROGRAM)
+    if _executable(bundled):
+        return _cached([bundled], "the addon's bin")
     try:
         import plunge
     except ImportError as e:
         raise ValueError(missing_planner_message(e))
-    return plunge
+    return _cached(None, plunge)
 
 
-# What FreeCAD raises when the user aborts (not an Exception).
-ABORT = getattr(FreeCAD.Base, "FreeCADAbort", KeyboardInterrupt)
+def _cached(argv, where):
+    """One Program per command line (its "about" asked once), one Module."""
+    key = tuple(argv) if argv is not None else "module"
+    if key not in _found:
+        _found[key] = Program(argv, where) if argv is not None else Module(where)
+    return _found[key]
 
 
 def is_abort(error):

@@ -1,6 +1,6 @@
 #!/bin/sh
 # Installs the FreeCAD addon (Init.py, InitGui.py, package.xml, freecad_plugin/,
-# icons, panels and the compiled planner beside them) into FreeCAD's user Mod
+# icons, panels, the planner program in bin/ and the module beside them) into FreeCAD's user Mod
 # folder, replacing an older copy, then the plunge-mill tool bits (Tools/ in
 # the addon; on FreeCAD 1.1 also the user's CAM asset library). Needs a build
 # (resources/setup.sh), or --build: the packages, then only what the addon
@@ -10,7 +10,7 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd)
 if [ "${1:-}" = --build ]; then
   sh "$ROOT/resources/setup.sh" --packages-only
   cmake -S "$ROOT" -B "$ROOT/build" -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=/usr/bin/python3 >/dev/null
-  cmake --build "$ROOT/build" -j"$(nproc)" --target plunge_python
+  cmake --build "$ROOT/build" -j"$(nproc)" --target plunge_python plunge-rough
 fi
 MOD=$(cd /tmp && freecadcmd -c "import FreeCAD; print('MODDIR=' + FreeCAD.getUserAppDataDir() + 'Mod')" 2>/dev/null \
       | sed -n 's/^MODDIR=//p' | tr -d '\r')
@@ -20,11 +20,14 @@ if [ -z "$MOD" ]; then
 fi
 if [ "$(realpath -m "$MOD")" = "$(realpath "$ROOT/..")" ]; then
   # A clone made by FreeCAD's Addon Manager is the addon folder itself: keep
-  # it, and put only what the build adds (the planner) beside its sources.
+  # it, and put only what the build adds (the planner program in bin/, the
+  # module and its library) beside its sources.
   ADDON=$ROOT
   staged=$(mktemp -d)
   cmake --install "$ROOT/build" --component freecad_addon --prefix "$staged" >/dev/null
   cp -P "$staged"/PlungeRough/*.so* "$ADDON/"
+  mkdir -p "$ADDON/bin"
+  cp "$staged"/PlungeRough/bin/* "$ADDON/bin/"
   rm -rf "$staged"
 else
   ADDON=$MOD/PlungeRough

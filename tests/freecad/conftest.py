@@ -7,8 +7,12 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 BUILD = os.environ.get("PLUNGE_BUILD_DIR", os.path.join(ROOT, "build"))
+# The bundle's suite (bundle_suite.py): the addon is the one FreeCAD loaded
+# from its profile's Mod folder, where the bundle was unzipped, and it plans
+# through the bundle's program; of the source tree only the tests are used.
+ADDON = os.environ.get("PLUNGE_ADDON")
 # tests/python: the G-code checker (machine_check.py) and geometry checks.
-for p in (os.path.join(ROOT, "tests", "python"), HERE, ROOT, os.path.join(BUILD, "cpp")):
+for p in (os.path.join(ROOT, "tests", "python"), HERE) + (() if ADDON else (ROOT, os.path.join(BUILD, "cpp"))):
     if p not in sys.path:
         sys.path.insert(0, p)
 
@@ -17,6 +21,14 @@ import pytest  # noqa: E402
 
 import parts  # noqa: E402
 from freecad_plugin import PlungeRough  # noqa: E402
+
+if ADDON:
+    assert os.path.dirname(os.path.dirname(os.path.abspath(PlungeRough.__file__))) == os.path.abspath(ADDON), \
+        "the addon under test is %s, not the bundle's" % PlungeRough.__file__
+
+
+def pytest_configure(config):
+    config.addinivalue_line("markers", "bundle: an end-to-end case the bundle's suite runs too (bundle_suite.py)")
 
 
 

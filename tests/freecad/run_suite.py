@@ -1,6 +1,6 @@
 """pytest inside freecadcmd (Debian's python3 with FreeCAD's modules): the
-suite named by PLUNGE_SUITE, "freecad" (headless) or "freecad_gui" (FreeCAD
-under xvfb, started by the tests). A script file, not `freecadcmd -c`: FreeCAD
+suite named by PLUNGE_SUITE, "freecad" (headless), "freecad_gui" (FreeCAD
+under xvfb, started by the tests) or "freecad_bundle" (bundle_suite.py). A script file, not `freecadcmd -c`: FreeCAD
 1.1 ends with "Application unexpectedly terminated" on a -c argument of 256
 characters or more."""
 import os
@@ -12,6 +12,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SUITES = {
     "freecad": [HERE, "--ignore=" + os.path.join(HERE, "test_gui.py")],
     "freecad_gui": [os.path.join(HERE, "test_gui.py")],
+    # The end-to-end cases, on a bundle unzipped into the profile (bundle_suite.py).
+    "freecad_bundle": [HERE, "--ignore=" + os.path.join(HERE, "test_gui.py"), "-m", "bundle"],
 }
 suite = os.environ.get("PLUNGE_SUITE", "freecad")
 code = int(pytest.main(["-q", "-p", "no:cacheprovider"] + SUITES[suite]))

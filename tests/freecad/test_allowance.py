@@ -332,6 +332,7 @@ def test_checker_finds_a_stop_too_low():
     quick(1, "flat", 1.0), quick(3, "flat", 1.0, long=True), quick(5, "flat", 0.0, long=True),
     quick(10, "flat", 0.0, long=True), quick(1, "bull", 1.0), quick(5, "bull", 0.0, long=True),
     quick(3, "ball", 0.0), quick(10, "ball", 0.0, long=True)])
+@pytest.mark.bundle
 def test_filleted_pocket(doc, tmp_path, radius, kind, floor_stock):
     """60 x 40 pocket 20 deep, walls and floor edges filleted at one radius
     (spherical corners), placed off the origin and turned."""
@@ -395,6 +396,7 @@ def user_blends(doc, walls, floor, floor_end):
 @pytest.mark.parametrize("walls,floor,floor_end,surface", [
     quick(0.5, 0.5, 0.5, Part.Sphere, long=True), quick(1, 1, 1, Part.Sphere, long=True),
     quick(3, 0.5, 0.5, Part.Toroid, long=True), quick(2, 0.5, 1.0, Part.BSplineSurface)])
+@pytest.mark.bundle
 def test_small_corner_blends(doc, tmp_path, walls, floor, floor_end, surface):
     """Small corner blends (R0.5 to R3: spherical, toroidal, B-spline) made with
     a Part Fillet as users do, planned with the fillets in the floor: they plan

@@ -18,6 +18,7 @@ plan = planner.planner().plan({"version": 1, "boundary": [[0, 0], [60, 0], [60, 
     "tools": [{"id": 1, "diameter": 16}, {"id": 2, "diameter": 6}], "top_z": 0, "safe_z": 5,
     "floor": {"z": -10}})
 print("RESULT=" + json.dumps({"plugin": freecad_plugin.__file__, "plunge": plunge.__file__,
+    "planner": planner.planner().name,
     "registered": "PlungeRough" in PathSetupSheet._RegisteredOps, "plunges": len(plan["plunges"]),
     "core_coverage": plan["stats"]["core_coverage"]}))
 """
@@ -49,6 +50,8 @@ def test_installed_addon_loads_and_plans(tmp_path):
     result, _ = check_plans(tmp_path, env)
     assert result["plugin"].startswith(str(installed))
     assert result["plunge"].startswith(str(installed))
+    # It plans out of FreeCAD's process, through the program in its bin/.
+    assert ", program %s (the addon's bin)" % (installed / "bin" / "plunge-rough") in result["planner"]
     assert result["registered"]
     assert result["plunges"] > 0 and result["core_coverage"] > 0.9999
 
@@ -104,8 +107,8 @@ def test_a_clone_into_mod_says_how_to_build_the_planner_and_then_plans(tmp_path)
     shutil.copytree(ROOT, clone, ignore=shutil.ignore_patterns(
         ".git", "build", "build-*", "out", "Tools", "__pycache__", ".pytest_cache", "*.so", "*.so.*"))
     said = freecad(MODDIR)
-    m = re.search(r"PlungeRough: the compiled planner .* not installed .*: build and install it for this FreeCAD, "
-                  r"as root on Debian: (sh '[^']+' --build)", said)
+    m = re.search(r"PlungeRough: the planner is not installed: .*: get PlungeRough-linux-x86_64.zip .*; or build and "
+                  r"install it for this FreeCAD, as root on Debian: (sh '[^']+' --build)", said)
     assert m, said[-3000:]
     command = m.group(1)
     assert command == "sh '%s/resources/install_addon.sh' --build" % clone
@@ -123,6 +126,7 @@ def test_a_clone_into_mod_says_how_to_build_the_planner_and_then_plans(tmp_path)
     assert run.returncode == 0, run.stdout[-2000:] + run.stderr[-2000:]
     result, said = check_plans(tmp_path, env)
     assert result["plugin"].startswith(clone) and result["plunge"].startswith(clone)
+    assert ", program %s (the addon's bin)" % os.path.join(clone, "bin", "plunge-rough") in result["planner"]
     assert result["plunges"] > 0 and result["core_coverage"] > 0.9999
     assert "not installed" not in said  # said no more
     bits = os.listdir(os.path.join(clone, "Tools", "Bit"))

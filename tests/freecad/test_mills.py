@@ -35,6 +35,7 @@ def plunge_cutter_job(doc):
     return job, op, tcs
 
 
+@pytest.mark.bundle
 def test_plunge_cutter_job_plans_simulates_and_posts_a_checked_program(doc):
     job, op, tcs = plunge_cutter_job(doc)
     plan = PlungeRough.plan_of(op)

@@ -61,6 +61,7 @@ def floor_max(face, x, y, r, rings=6, spokes=72):
     return best
 
 
+@pytest.mark.bundle
 def test_flat_pocket_with_islands(doc):
     job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
     ops = job.Operations.Group
@@ -89,6 +90,7 @@ def test_flat_pocket_with_islands(doc):
     assert "coverage" in op.Summary and "min" in op.Summary and "stock left: walls up to" in op.Summary
 
 
+@pytest.mark.bundle
 def test_sculptured_floor_and_freeform_walls(doc):
     job, op, tcs = build_op(doc, parts.freeform_part(True), sculptured=True)
     plunges = plunges_of(job)

@@ -21,6 +21,7 @@ def assert_matches(posted, expected):
         assert t1 == t2 and abs(x1 - x2) < 2e-3 and abs(y1 - y2) < 2e-3 and abs(z1 - z2) < 2e-3
 
 
+@pytest.mark.bundle
 @pytest.mark.parametrize("canned", [False, True])
 def test_linuxcnc(doc, tmp_path, canned):
     job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False, canned=canned, peck=3.0 if canned else 0.0)

@@ -110,6 +110,7 @@ def plunge_checks(job, program, tool):
     return cuts, heights, by_rapids, stock
 
 
+@pytest.mark.bundle
 @pytest.mark.parametrize("cleared", [20.0])
 def test_plunge_rough_after_adaptive_plans_only_the_rest(doc, cleared):
     job, adaptive, op = adaptive_then_plunge(doc, cleared)

@@ -55,6 +55,7 @@ def height_map(meshes, xs, ys, top):
     return h
 
 
+@pytest.mark.bundle
 @pytest.mark.parametrize("canned", [False, True])
 def test_each_tool_cuts_its_own_plunges(doc, canned):
     job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False, diameters=(24, 14), canned=canned)
