@@ -51,19 +51,21 @@ def bundle_name():
     return None
 
 
-def install_command(addon=ADDON):
+def install_command(addon=None):
     """The one command that builds the planner and installs it (and the
     plunge-mill bits) for this FreeCAD, from a clone of the repository (an
     Addon Manager install is one) on Debian or Ubuntu; None for an installed
     copy, which has no sources to build from, and away from Debian."""
+    addon = addon or ADDON
     if not os.path.exists(os.path.join(addon, "resources", "setup.sh")) or not os.path.exists("/etc/debian_version"):
         return None
     return "sh '%s/resources/install_addon.sh' --build" % addon
 
 
-def missing_planner_message(error=None, addon=ADDON):
+def missing_planner_message(error=None, addon=None):
     """What the user reads when no planner is found: the bundle to get for
     this platform and where it goes, and on Debian or Ubuntu the build command."""
+    addon = addon or ADDON
     why = " (%s)" % error if error else ""
     bundle = bundle_name()
     if bundle:
@@ -131,8 +133,10 @@ def _run(argv, request, progress=None):
         if proc.poll() is None:  # cancelled (Esc, Ctrl+C): stopped at once
             proc.kill()
             proc.wait()
+        # Its answer is read to the end; what else it left (a child of a
+        # wrapper still holding the pipes) is not waited for.
         for t in threads:
-            t.join(timeout=5)
+            t.join(timeout=30 if proc.returncode == 0 else 0.5)
     code = proc.returncode
     if code == 0:
         try:
