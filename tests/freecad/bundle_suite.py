@@ -8,8 +8,11 @@ is unzipped with Python's zipfile, as FreeCAD's Addon Manager unpacks, so the
 program loses its execute bit, into the Mod folder of a fresh FreeCAD profile.
 freecadcmd then runs the cases with that profile: the addon is the one FreeCAD
 loaded from there, it plans through the bundle's program, and neither the
-build tree nor a compiled module is on its path. PLUNGE_ROUGH_PLANNER, when
-set (the Windows program under wine, tests/bundle/run.sh), is passed on.
+build tree nor a compiled module is on its path.
+
+PLUNGE_BUNDLE_WINE=1 (the Windows bundle, tests/portable/run.sh): its program
+runs under wine, named to the addon by PLUNGE_ROUGH_PLANNER, with a wine
+prefix of its own.
 
 Run by Debian's python3 (ctest "freecad_bundle"); PLUNGE_BUNDLE_HOME is the
 profile's folder, made anew."""
@@ -46,5 +49,8 @@ with zipfile.ZipFile(bundle) as z:
 addon = os.path.join(mod, "PlungeRough")
 print("bundle_suite: %s unzipped into %s" % (os.path.basename(bundle), mod), flush=True)
 env.update(PLUNGE_ADDON=addon, PLUNGE_SUITE="freecad_bundle")
+if os.environ.get("PLUNGE_BUNDLE_WINE") == "1":
+    env.update(WINEPREFIX=os.path.join(home, "wine"), WINEDEBUG="-all", WINEDLLOVERRIDES="mscoree,mshtml=",
+               PLUNGE_ROUGH_PLANNER="wine '%s'" % os.path.join(addon, "bin", "plunge-rough.exe"))
 run = subprocess.run(["freecadcmd", os.path.join(HERE, "run_suite.py")], cwd=home, env=env, timeout=3600)
 sys.exit(run.returncode)
