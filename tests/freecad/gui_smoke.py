@@ -18,6 +18,7 @@ the end. Results go to $PLUNGE_GUI_OUT/gui_result.json, screenshots beside it.""
 import json
 import math
 import os
+import signal
 import sys
 import time
 import traceback
@@ -173,6 +174,67 @@ def cancel_a_long_plan(doc, op, plan_before):
     step("example: planned again after the cancel")
 
 
+def planner_children():
+    """The planner programs this FreeCAD runs now (its child processes named plunge-rough)."""
+    out = []
+    for entry in os.listdir("/proc"):
+        try:
+            with open("/proc/%s/stat" % entry) as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+            with open("/proc/%s/comm" % entry) as f:
+                name = f.read().strip()
+        except (OSError, IndexError):
+            continue
+        if int(fields[1]) == os.getpid() and name.startswith("plunge-rough"):
+            out.append(int(entry))
+    return out
+
+
+def kill_a_plan(doc, op):
+    """While the example plans (the long plan of cancel_a_long_plan), its
+    planner program is killed from outside, as the system or a user would:
+    the report view names what happened, in red; FreeCAD stays up, nothing is
+    cut, and the next recompute plans again. That red line is the one the
+    session's check for errors expects (result["expected_errors"])."""
+    from freecad_plugin import companions, planner
+    result["planner"] = planner.planner().name
+    op.MaxEngagement = 10.0
+    doc.recompute()
+    long_plan = PlungeRough_plan(op)
+    killed = []
+
+    def kill():
+        children = planner_children()
+        if children and not killed:
+            killed.append(children[0])
+            os.kill(children[0], signal.SIGKILL)
+
+    poll = QtCore.QTimer()
+    poll.timeout.connect(kill)
+    op.touch()
+    QtCore.QTimer.singleShot(1500, lambda: poll.start(50))
+    try:
+        FreeCADGui.runCommand("Std_Refresh")
+    finally:
+        poll.stop()
+    lines = report_lines()
+    cut = [c for o in [op] + companions.companions(op) for c in o.Path.Commands if c.Name in ("G1", "G81", "G83")]
+    result["kill"] = {
+        "killed": bool(killed),
+        "summary": op.Summary,
+        "red": [text for text, red in lines if red and "was stopped (SIGKILL)" in text],
+        "cut": len(cut),
+        "touched": "Touched" in op.State,
+    }
+    result.setdefault("expected_errors", []).extend(result["kill"]["red"])
+    step("example: its planner killed")
+    doc.recompute()
+    result["kill"]["planned_again"] = PlungeRough_plan(op) == long_plan
+    op.MaxEngagement = 100.0
+    doc.recompute()
+    step("example: planned again after the kill")
+
+
 def PlungeRough_plan(op):
     from freecad_plugin import PlungeRough
     plan = PlungeRough.plan_of(op)
@@ -258,7 +320,7 @@ def report_errors():
     would see; FreeCAD's own known ones aside, each recorded with the step
     during which it came (the last one recorded)."""
     errors, known = classify(report_lines(), FreeCAD.Version()[0] == "0")
-    result["report"] = errors
+    result["report"] = [e for e in errors if e not in result.get("expected_errors", [])]
     during = result["steps"][-1] if result["steps"] else "start"
     before = result.setdefault("report_known_upstream", [])
     before.extend({"bug": bug, "step": during, "traceback": text} for bug, text in known[len(before):])
@@ -375,6 +437,7 @@ def example_document():
         "operations": [o.Name for o in job.Operations.Group] == [op.Name] + [c.Name for c in comps]}
     step("example: panel and cancel")
     cancel_a_long_plan(doc, op, plan_before)
+    kill_a_plan(doc, op)
 
     # The voxel simulator's own panel, fast-forwarded to the end.
     name = compat.voxel_simulator_command()

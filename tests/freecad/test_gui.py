@@ -127,6 +127,18 @@ def test_example_document_is_a_gui_document(result):
         assert size is not None and min(size) > 200, (name, size)
 
 
+def test_it_plans_out_of_freecads_process_and_survives_a_planner_killed(result):
+    """The installed addon plans through the program in its bin/. Killed from
+    outside while it plans, the planner leaves one red line naming what
+    happened; FreeCAD stays up, nothing is cut, and the next recompute plans
+    the same plan again."""
+    assert ", program %s (the addon's bin)" % os.path.join(result["addon"], "bin", "plunge-rough") in result["planner"]
+    k = result["kill"]
+    assert k["killed"] and len(k["red"]) == 1 and "PlungeRough: the planner " in k["red"][0], k
+    assert "was stopped (SIGKILL)" in k["summary"] and k["cut"] == 0 and k["touched"], k
+    assert k["planned_again"], k
+
+
 def test_a_long_plan_cancels_within_a_second(result):
     """Esc while the example plans (several seconds), Yes in FreeCAD's abort
     box: the plan stops within a second of the Yes, says so in the report view,

@@ -16,7 +16,7 @@
 # /var/tmp/plungerough-fresh/SUITE). The clone is of the checkout's HEAD
 # (commit first); PLUNGE_FRESH_WORKTREE=1 copies the working tree instead.
 # The environment inside is a clean root login's, plus PLUNGE_WERROR (CI's
-# -Werror, see resources/setup.sh).
+# -Werror, see resources/setup.sh) and the bundle under test (below).
 # Needs root on a Debian host (debootstrap is installed if missing).
 set -eu
 SUITE=${1:?usage: run.sh bookworm|trixie|forky [all|main|test]}
@@ -99,14 +99,34 @@ else
   say "cloned $ROOT at $(git -C "$ROOT" rev-parse --short HEAD)"
 fi
 
+# The Linux bundle under test: PLUNGE_TEST_BUNDLE on the host (CI builds it
+# once, on Debian 12, the way users get it, and every FreeCAD version tests
+# that one), copied in when the test command starts; the host may still be
+# building it then (CI runs both side by side): waited for up to 30 minutes,
+# or until the host gives up on it (PLUNGE_TEST_BUNDLE.failed).
+# Without it, the test command builds this checkout's.
+bundle_in() {
+  [ -n "${PLUNGE_TEST_BUNDLE:-}" ] || return 0
+  waited=0
+  while [ ! -s "$PLUNGE_TEST_BUNDLE" ] && [ ! -e "$PLUNGE_TEST_BUNDLE.failed" ] && [ $waited -lt 1800 ]; do
+    sleep 5
+    waited=$((waited + 5))
+  done
+  [ -s "$PLUNGE_TEST_BUNDLE" ] || die "no bundle at $PLUNGE_TEST_BUNDLE"
+  cp "$PLUNGE_TEST_BUNDLE" "$DIR/root/"
+  BUNDLE_ENV="PLUNGE_TEST_BUNDLE=/root/$(basename "$PLUNGE_TEST_BUNDLE")"
+  say "testing the bundle $PLUNGE_TEST_BUNDLE"
+}
+BUNDLE_ENV=
+
 run_in_chroot() {
   say "\$ $1"
   env -i HOME=/root TERM=dumb LANG=C.UTF-8 PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
-    PLUNGE_WERROR="${PLUNGE_WERROR:-OFF}" PLUNGE_TEST_ADDON_BUILD="${PLUNGE_TEST_ADDON_BUILD:-0}" \
+    PLUNGE_WERROR="${PLUNGE_WERROR:-OFF}" PLUNGE_TEST_ADDON_BUILD="${PLUNGE_TEST_ADDON_BUILD:-0}" $2 \
     chroot "$DIR" /bin/sh -c "cd /root/PlungeRough && $1"
 }
 
 start=$(date +%s)
-[ "$WHAT" = test ] || run_in_chroot "$MAIN_CMD"
-[ "$WHAT" = main ] || run_in_chroot "$TEST_CMD"
+[ "$WHAT" = test ] || run_in_chroot "$MAIN_CMD" ""
+[ "$WHAT" = main ] || { bundle_in; run_in_chroot "$TEST_CMD" "$BUNDLE_ENV"; }
 say "passed ($WHAT) in $(( $(date +%s) - start )) s"
