@@ -207,15 +207,22 @@ MaterialGrid materialFromValue(const json& j) {
 namespace {
 
 // "floor": {"mesh": {"vertices": [[x, y, z], ...], "triangles": [[i, j, k], ...],
-// "deviation": mm}}; the indices are checked against the vertices by the floor
-// itself (mesh_floor.hpp).
+// "deviation": mm, or [mm, ...] one per triangle}}; the indices and the
+// deviations' count are checked by the floor itself (mesh_floor.hpp).
 FloorMesh readMesh(const json& m) {
   if (!m.is_object()) throw Error("floor.mesh: expected {\"vertices\", \"triangles\", \"deviation\"}");
   onlyKeys(m, {"vertices", "triangles", "deviation"}, "floor.mesh: ");
   for (const char* key : {"vertices", "triangles", "deviation"})
     if (!m.contains(key)) throw Error(std::string("floor.mesh.") + key + ": required");
   FloorMesh mesh;
-  mesh.deviation = number(m["deviation"], "floor.mesh.deviation");
+  // One distance for every triangle, or a list of one per triangle.
+  const json& dev = m["deviation"];
+  mesh.deviation.clear();
+  if (dev.is_array()) {
+    for (const json& v : dev) mesh.deviation.push_back(number(v, "floor.mesh.deviation"));
+  } else {
+    mesh.deviation.push_back(number(dev, "floor.mesh.deviation"));
+  }
   const json& vs = m["vertices"];
   if (!vs.is_array()) throw Error("floor.mesh.vertices: expected a list of [x, y, z]");
   mesh.vertices.reserve(vs.size());

@@ -114,7 +114,9 @@ class MeshFloor : public FloorSurface {
   explicit MeshFloor(const FloorMesh& mesh) {
     auto built = std::make_shared<Data>();
     Data& d = *built;
-    d.deviation = mesh.deviation;
+    d.deviation = mesh.deviation.size() == 1 ? std::vector<double>(mesh.triangles.size(), mesh.deviation[0])
+                                             : mesh.deviation;
+    d.maxDeviation = *std::max_element(d.deviation.begin(), d.deviation.end());
     d.vertices.reserve(mesh.vertices.size());
     for (const auto& v : mesh.vertices) d.vertices.push_back({v[0], v[1], v[2]});
     d.triangles = mesh.triangles;
@@ -165,26 +167,32 @@ class MeshFloor : public FloorSurface {
     return out;
   }
 
+  // Each triangle lies within its deviation of the true surface: the cutter
+  // grown by that much in every direction, dropped on it, then raised by it,
+  // clears every surface that close to the triangle.
   std::optional<double> exactStopHeight(Vec2 c, const Cutter& cutter) const override {
     const Data& d = *data_;
-    const Cutter g = d.deviation > 0 ? grownAround(cutter, d.deviation) : cutter;
-    const double R = g.radius;
-    std::vector<std::pair<double, std::uint32_t>> near;  // (highest vertex, triangle)
+    const double R = cutter.radius + d.maxDeviation;
+    std::vector<std::pair<double, std::uint32_t>> near;  // (highest its drop can be, triangle)
     d.index.query(bgi::intersects(Box(Point(c.x - R, c.y - R), Point(c.x + R, c.y + R))),
-                  boost::make_function_output_iterator(
-                      [&](const Entry& e) { near.push_back({d.top[e.second], e.second}); }));
-    // Highest first: a triangle whose highest vertex is below the best contact
-    // so far cannot lift the cutter (its profile is never below its tip).
+                  boost::make_function_output_iterator([&](const Entry& e) {
+                    near.push_back({d.top[e.second] + d.deviation[e.second], e.second});
+                  }));
+    // Highest first: a triangle whose highest vertex (raised by its deviation)
+    // is below the best contact so far cannot lift the cutter (its profile is
+    // never below its tip).
     std::sort(near.begin(), near.end(), [](const auto& x, const auto& y) {
       return x.first > y.first || (x.first == y.first && x.second < y.second);
     });
     double best = -kInf;
-    for (const auto& [top, i] : near) {
-      if (top <= best) break;
+    for (const auto& [bound, i] : near) {
+      if (bound <= best) break;
       const auto& t = d.triangles[i];
-      best = std::max(best, dropOnTriangle(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]], c, g));
+      const double dev = d.deviation[i];
+      const Cutter g = dev > 0 ? grownAround(cutter, dev) : cutter;
+      best = std::max(best, dropOnTriangle(d.vertices[t[0]], d.vertices[t[1]], d.vertices[t[2]], c, g) + dev);
     }
-    return std::isfinite(best) ? best + d.deviation : kNaN;
+    return std::isfinite(best) ? best : kNaN;
   }
 
   std::unique_ptr<FloorSurface> clone() const override { return std::make_unique<MeshFloor>(*this); }
@@ -196,7 +204,8 @@ class MeshFloor : public FloorSurface {
     std::vector<std::array<std::uint32_t, 3>> triangles;
     std::vector<double> top;  // each triangle's highest vertex
     std::vector<Vec3> peaks;  // vertices no neighbour stands above
-    double deviation = 0.0;
+    std::vector<double> deviation;  // each triangle's
+    double maxDeviation = 0.0;
     Index index;
   };
   // Read only once built: clones (one per thread) share it.
@@ -210,8 +219,11 @@ std::unique_ptr<FloorSurface> makeMeshFloor(const FloorMesh& mesh) {
   if (mesh.triangles.size() > kMaxTriangles)
     throw Error("floor.mesh.triangles: " + std::to_string(mesh.triangles.size()) + " triangles, more than " +
                 std::to_string(kMaxTriangles) + ": tessellate the floor more coarsely");
-  if (!std::isfinite(mesh.deviation) || mesh.deviation < 0)
-    throw Error("floor.mesh.deviation: expected a distance of 0 or more (mm)");
+  if (mesh.deviation.size() != 1 && mesh.deviation.size() != mesh.triangles.size())
+    throw Error("floor.mesh.deviation: expected one distance, or one per triangle (" +
+                std::to_string(mesh.triangles.size()) + "), not " + std::to_string(mesh.deviation.size()));
+  for (double d : mesh.deviation)
+    if (!std::isfinite(d) || d < 0) throw Error("floor.mesh.deviation: expected distances of 0 or more (mm)");
   for (size_t i = 0; i < mesh.vertices.size(); ++i)
     for (double v : mesh.vertices[i])
       if (!std::isfinite(v)) throw Error("floor.mesh.vertices[" + std::to_string(i) + "]: not a finite point");

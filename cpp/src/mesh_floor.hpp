@@ -4,11 +4,11 @@
 //
 // Stop heights come from an exact drop of the flat, ball or bull cutter on
 // the triangles (drop-cutter: the highest contact over each triangle's facet,
-// edges and vertices), not from a search. The mesh lies within `deviation` of
-// the true surface, so the cutter grown by it in every direction (its tip
-// that much lower, grownAround) is dropped and raised by it: the true cutter
-// then keeps clear of every surface within `deviation` of the mesh, so a stop
-// is never below the true one.
+// edges and vertices), not from a search. Each triangle lies within its
+// `deviation` of the true surface, so the cutter grown by it in every
+// direction (its tip that much lower, grownAround) is dropped on it and raised
+// by it: the true cutter then keeps clear of every surface that close to the
+// triangle, so a stop is never below the true one.
 #pragma once
 #include <memory>
 
@@ -19,7 +19,8 @@
 namespace plunge {
 
 // Throws plunge::Error naming what is wrong with the mesh (indices out of
-// range, values not finite, no triangle, a negative deviation).
+// range, values not finite, no triangle, a negative deviation, deviations
+// neither one nor one per triangle).
 std::unique_ptr<FloorSurface> makeMeshFloor(const FloorMesh& mesh);
 
 // The tip height at which `cutter` over `center` first touches the triangles

@@ -48,7 +48,7 @@ FloorMesh gridMesh(double w, double d, double h, double deviation) {
       m.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
       m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
     }
-  m.deviation = deviation;
+  m.deviation = {deviation};
   return m;
 }
 
@@ -122,10 +122,24 @@ TEST(MeshFloor, DeviationKeepsTheCutterOffInEveryDirection) {
   m.triangles = {{0, 1, 2}};
   const Cutter ball{CutterShape::Ball, 5, 5};
   const auto exact = makeMeshFloor(m);
-  m.deviation = 0.1;
+  m.deviation = {0.1};
   const auto kept = makeMeshFloor(m);
   const DepthSolver a(*exact, {-10, -10}, {10, 10}, 0.5), b(*kept, {-10, -10}, {10, 10}, 0.5);
   EXPECT_NEAR(b.stopHeight({0, 0}, ball) - a.stopHeight({0, 0}, ball), 0.1 * std::sqrt(2.0), 1e-9);
+}
+
+TEST(MeshFloor, EachTriangleKeepsItsOwnDeviation) {
+  // Two triangles side by side: the raise over each is its own.
+  FloorMesh m;
+  m.vertices = {{0, 0, 0}, {20, 0, 0}, {20, 20, 0}, {0, 20, 0}, {40, 0, 0}, {40, 20, 0}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}, {1, 4, 5}, {1, 5, 2}};
+  m.deviation = {0.01, 0.01, 0.2, 0.2};
+  const auto floor = makeMeshFloor(m);
+  const DepthSolver solver(*floor, {0, 0}, {40, 20}, 0.5);
+  const Cutter flat{CutterShape::Flat, 3, 0};
+  EXPECT_NEAR(solver.stopHeight({6, 10}, flat), 0.01, 1e-9);
+  EXPECT_NEAR(solver.stopHeight({34, 10}, flat), 0.2, 1e-9);
+  EXPECT_NEAR(solver.stopHeight({20, 10}, flat), 0.2, 1e-9);  // over both: the higher
 }
 
 TEST(MeshFloor, RefusesBadMeshes) {
@@ -135,9 +149,11 @@ TEST(MeshFloor, RefusesBadMeshes) {
   m.triangles = {{0, 1, 3}};
   EXPECT_THROW(makeMeshFloor(m), Error);  // no vertex 3
   m.triangles = {{0, 1, 2}};
-  m.deviation = -1;
+  m.deviation = {-1};
   EXPECT_THROW(makeMeshFloor(m), Error);
-  m.deviation = 0;
+  m.deviation = {0.1, 0.2};  // neither one nor one per triangle
+  EXPECT_THROW(makeMeshFloor(m), Error);
+  m.deviation = {0};
   m.vertices[1][2] = NAN;
   EXPECT_THROW(makeMeshFloor(m), Error);
 }
@@ -146,7 +162,7 @@ TEST(MeshFloor, PlansThroughTheCallsWithEveryPlungeAboveTheTrueFloor) {
   // The bowl as a plan's mesh floor: no stop below the true surface plus the
   // floor allowance, measured by brute force on the expression.
   const FloorMesh fm = gridMesh(100, 80, 0.5, 0.002);
-  nlohmann::json mesh{{"deviation", fm.deviation}, {"vertices", fm.vertices}, {"triangles", fm.triangles}};
+  nlohmann::json mesh{{"deviation", fm.deviation[0]}, {"vertices", fm.vertices}, {"triangles", fm.triangles}};
   nlohmann::json input{{"version", 1},
                        {"boundary", {{5, 5}, {95, 5}, {95, 75}, {5, 75}}},
                        {"tools", {{{"diameter", 16}, {"id", 1}}, {{"diameter", 8}, {"id", 2}, {"shape", "ball"}}}},

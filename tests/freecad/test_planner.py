@@ -92,8 +92,11 @@ class Recorder:
 
 
 def slow_pocket(doc):
-    """A pocket that takes the program a while to plan (a 3 mm plunger covering the gaps)."""
-    return build_op(doc, parts.islands_part(), sculptured=False, diameters=(20, 12, 6, 3))
+    """A pocket that takes the program seconds to plan (a 10 % engagement limit)."""
+    job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
+    op.MaxEngagement = 10.0
+    doc.recompute()
+    return job, op, tcs
 
 
 def test_esc_stops_the_program_within_a_second(doc, fresh, monkeypatch):

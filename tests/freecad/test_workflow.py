@@ -163,6 +163,7 @@ def test_planning_reports_progress_and_can_be_aborted(doc, monkeypatch):
 
     job, op, tcs = build_op(doc, parts.islands_part(), sculptured=False)
     assert PlungeRough.plan_of(op)
+    op.MaxEngagement = 10.0  # a plan of seconds, not a fraction of one, to abort
     monkeypatch.setattr(FreeCAD.Base, "ProgressIndicator", Indicator)
     op.touch()
     doc.recompute()

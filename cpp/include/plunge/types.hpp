@@ -95,13 +95,13 @@ struct SelectionOptions {
 // --- the input -----------------------------------------------------------------
 
 // A floor given as triangles (the FreeCAD addon's tessellation of the selected
-// faces): vertices (x, y, z), triangles as three vertex indices, and the
-// mesh's largest distance from the true surface, by which every stop is kept
-// further off it (mesh_floor.hpp).
+// faces): vertices (x, y, z), triangles as three vertex indices, and how far
+// the true surface may lie from them: one distance for every triangle, or one
+// per triangle. Every stop is kept that much further off (mesh_floor.hpp).
 struct FloorMesh {
   std::vector<std::array<double, 3>> vertices;
   std::vector<std::array<std::uint32_t, 3>> triangles;
-  double deviation = 0.0;
+  std::vector<double> deviation{0.0};
 };
 
 struct Floor {

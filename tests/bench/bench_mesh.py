@@ -1,0 +1,78 @@
+"""The FreeCAD demo's sculptured floor planned two ways, as users get them:
+through the README's install (the module, the floor as BREP faces) and
+through the Linux bundle's program (no OpenCASCADE: the floor as the addon's
+mesh). Prints the whole recompute, the mesh's making and the planner's own
+time each way (median of --repeat), and the plans' plunges and estimated time.
+
+    sh resources/bundle.sh linux
+    freecadcmd tests/bench/bench_mesh.py        # after the build (build/)
+
+PLUNGE_BENCH_REPEAT (default 5) sets the repeats."""
+import json
+import os
+import statistics
+import sys
+import time
+import zipfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path[:0] = [ROOT, os.path.join(ROOT, "build", "cpp"), os.path.join(ROOT, "resources", "examples")]
+
+import FreeCAD  # noqa: E402
+
+from example_part import add_plunge_rough, floor_face_name, freeform_part, make_job  # noqa: E402
+from freecad_plugin import PlungeRough, floor_mesh, planner  # noqa: E402
+
+REPEAT = int(os.environ.get("PLUNGE_BENCH_REPEAT", "5"))
+bundle = os.path.join(ROOT, "dist", "PlungeRough-linux-x86_64.zip")
+unzipped = os.path.join(ROOT, "build", "bench-bundle")
+with zipfile.ZipFile(bundle) as z:
+    z.extractall(unzipped)
+program = os.path.join(unzipped, "PlungeRough", "bin", "plunge-rough")
+os.chmod(program, 0o755)
+
+doc = FreeCAD.newDocument("BenchMesh")
+job = make_job(doc, freeform_part())
+op, tcs = add_plunge_rough(job, floor_face_name(job.Model.Group[0].Shape, True))
+
+timings = {}
+real_mesh = floor_mesh.floor_mesh
+
+
+def timed_mesh(faces, *args, **kwargs):
+    start = time.perf_counter()
+    out = real_mesh(faces, *args, **kwargs)
+    timings.setdefault("mesh", []).append(time.perf_counter() - start)
+    return out
+
+
+floor_mesh.floor_mesh = timed_mesh
+rows = []
+for name, command in (("module, BREP floor", None), ("bundle's program, mesh floor", program)):
+    if command:
+        os.environ[planner.ENVIRONMENT] = command
+    else:
+        os.environ.pop(planner.ENVIRONMENT, None)
+    timings.clear()
+    whole, planning = [], []
+    for _ in range(REPEAT):
+        op.touch()
+        start = time.perf_counter()
+        doc.recompute()
+        whole.append(time.perf_counter() - start)
+        plan = PlungeRough.plan_of(op)
+        planning.append(plan["stats"]["planning_seconds"])
+    floor = json.loads(op.PlanData)["input"]["floor"]
+    rows.append((name, statistics.median(whole), statistics.median(timings["mesh"]) if "mesh" in timings else None,
+                 statistics.median(planning), plan["stats"]["plunge_count"], plan["stats"]["estimated_minutes"],
+                 len(floor["mesh"]["triangles"]) if "mesh" in floor else None, planner.planner().name))
+print("| planner | recompute | mesh made in | planning | plunges | est. time | triangles |")
+print("|---|---|---|---|---|---|---|")
+for name, whole, mesh, planning, count, minutes, triangles, _ in rows:
+    print("| %s | %.2f s | %s | %.2f s | %d | %.1f min | %s |" % (
+        name, whole, "%.2f s" % mesh if mesh is not None else "-", planning, count, minutes,
+        triangles if triangles is not None else "-"))
+print("through the mesh / through the BREP: recompute %.2f x, planning %.2f x" % (rows[1][1] / rows[0][1],
+                                                                                    rows[1][3] / rows[0][3]))
+for row in rows:
+    print("planned by", row[-1])
