@@ -9,8 +9,10 @@ install_missing() {
   [ -n "$missing" ] || return 0
   echo "setup: installing$missing"
   if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=""; fi
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive DEBCONF_NOWARNINGS=yes $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
+  # One install at a time: CI runs its stages side by side (.ci/run), and apt
+  # refuses to run twice.
+  $SUDO flock /var/lib/dpkg/plungerough.lock sh -c "apt-get update -qq &&
+    DEBIAN_FRONTEND=noninteractive DEBCONF_NOWARNINGS=yes apt-get install -y -qq --no-install-recommends $missing >/dev/null"
 }
 
 # This machine's Debian mirror (deb822 sources first, then sources.list).

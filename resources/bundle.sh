@@ -47,6 +47,7 @@ if [ "$(sources)" -ne 2 ]; then
   echo "bundle: Debian's sources of Clipper and muParser ($codename)"
   apt-get "$@" -qq update
   (cd "$WORK/sources" && apt-get "$@" -qq source libpolyclipping-dev muparser >/dev/null)
+  rm -rf "$apt"
   [ "$(sources)" -eq 2 ] || die "apt-get source did not unpack libpolyclipping and muparser"
 fi
 CLIPPER=$(ls -d "$WORK"/sources/libpolyclipping-*/ | head -n1)

@@ -38,7 +38,7 @@ COMMANDS=$(awk '/^```sh$/ {on=1; next} on && /^```/ {exit} on && NF' "$ROOT/READ
 MAIN_CMD=$(printf '%s\n' "$COMMANDS" | sed -n 1p)
 TEST_CMD=$(printf '%s\n' "$COMMANDS" | sed -n 2p)
 
-. "$ROOT/resources/apt.sh"  # mirror
+. "$ROOT/resources/apt.sh"  # install_missing, mirror
 
 mounted_under() { awk -v d="$1" '$2 == d || index($2, d "/") == 1 {print $2}' /proc/mounts; }
 
@@ -52,10 +52,7 @@ release() {
   [ -z "$(mounted_under "$DIR")" ] || die "could not unmount everything under $DIR"
 }
 
-command -v debootstrap >/dev/null || {
-  say "installing debootstrap on the host"
-  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq debootstrap >/dev/null
-}
+install_missing debootstrap
 
 TARBALL=$CACHE/$SUITE-minbase.tar
 if [ ! -s "$TARBALL" ]; then
