@@ -236,8 +236,7 @@ def planner():
     named by the environment or the preference."""
     command = os.environ.get(ENVIRONMENT, "").strip()
     if command:
-        argv = shlex.split(command, posix=os.name != "nt")
-        return _cached(argv, "%s" % ENVIRONMENT)
+        return _cached(_split(command), ENVIRONMENT)
     path = FreeCAD.ParamGet(PREFERENCES).GetString(PREFERENCE, "").strip()
     if path:
         if not _executable(path):
@@ -251,6 +250,14 @@ def planner():
     except ImportError as e:
         raise ValueError(missing_planner_message(e))
     return _cached(None, plunge)
+
+
+def _split(command):
+    """A command line's words: as a POSIX shell splits them, or on Windows at
+    spaces outside double quotes (backslashes are a path's, not escapes)."""
+    if os.name != "nt":
+        return shlex.split(command)
+    return [w[1:-1] if len(w) > 1 and w[0] == w[-1] == '"' else w for w in shlex.split(command, posix=False)]
 
 
 def _cached(argv, where):

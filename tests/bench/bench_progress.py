@@ -4,7 +4,10 @@ prints the longest time between two calls of it, and in which stage, per input
 (what a user waits for after pressing Esc). The planner's promise: at most 0.5 s
 of work between calls, so a cancel stops it within 1 s.
 
-    /usr/bin/python3 tests/bench/bench_progress.py [--build build] [input.json ...]
+    /usr/bin/python3 tests/bench/bench_progress.py [--build build] [--program PATH] [input.json ...]
+
+--program: the planner program as FreeCAD's addon runs it (plunge-rough call,
+e.g. a bundle's), the gaps between the progress lines it writes on stderr.
 
 Without inputs: the test shapes, the examples, each with its tools limited to
 0.25 D, and the sculptured example with the floor fillet's corner blend.
@@ -53,19 +56,41 @@ def measure(plunge, data):
     return gap, stage, calls[-1][0] - t0
 
 
+def measure_program(program, data):
+    """The same for the program: the longest gap between its progress lines."""
+    import subprocess
+    t0 = time.perf_counter()
+    proc = subprocess.Popen([program, "call"], stdin=subprocess.PIPE, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE)
+    proc.stdin.write(json.dumps({"call": "plan", "input": data}).encode())
+    proc.stdin.close()
+    calls = [(t0, "start")]
+    for line in proc.stderr:
+        calls.append((time.perf_counter(), line.decode().split(" ", 2)[-1].strip()))
+    proc.wait()
+    calls.append((time.perf_counter(), "end"))
+    gap, stage = max((b[0] - a[0], a[1]) for a, b in zip(calls, calls[1:]))
+    return gap, stage, calls[-1][0] - t0
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--program", help="measure this planner program's progress lines instead of the module")
     ap.add_argument("inputs", nargs="*")
     args = ap.parse_args()
     sys.path.insert(0, os.path.join(args.build, "cpp"))
     import plunge
+    program = os.path.abspath(args.program) if args.program else None
     print("| input | planning | longest gap between progress calls | in stage |")
     print("|---|---|---|---|")
     worst = 0.0
     for name, data, folder in inputs(args.inputs):
         os.chdir(folder)  # relative BREP floors
-        gap, stage, total = measure(plunge, data)
+        if program:
+            gap, stage, total = measure_program(program, data)
+        else:
+            gap, stage, total = measure(plunge, data)
         worst = max(worst, gap)
         print("| %s | %.2f s | %.3f s | %s |" % (name, total, gap, stage), flush=True)
     print("\nworst gap: %.3f s" % worst)

@@ -17,7 +17,7 @@ import zipfile
 import pytest
 
 from conftest import load_shape
-from test_program import GOLDEN, golden, without_timings
+from test_program import GOLDEN, golden, killed_while_planning, without_timings
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -171,17 +171,8 @@ def test_the_windows_program_from_and_to_paths_with_any_character(windows, wine_
 
 
 def test_a_kill_stops_the_windows_program(windows, wine_env):
-    data = load_shape("benchmark")
-    data["tools"].append({"id": 9, "diameter": 3})
-    proc = subprocess.Popen([WINE, str(windows[0]), "call"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, env=wine_env)
-    proc.stdin.write(json.dumps({"call": "plan", "input": data}).encode())
-    proc.stdin.close()
-    assert proc.stderr.readline().startswith(b"progress ")
-    start = time.monotonic()
-    proc.kill()
-    proc.wait(timeout=10)
-    assert time.monotonic() - start < 1.0 and proc.returncode == -9
+    took, code = killed_while_planning([WINE, str(windows[0])], env=wine_env)
+    assert took < 1.0 and code == -9
     # Nothing of it goes on planning: its process is gone from wine.
     time.sleep(0.5)
     left = subprocess.run(["pgrep", "-f", "plunge-rough.exe"], capture_output=True, text=True).stdout.split()
