@@ -30,7 +30,8 @@ translate = FreeCAD.Qt.translate
 SETUP_PROPERTIES = ["IncludeFillets", "RadialAllowance", "FloorAllowance", "ChordTolerance", "UseCannedCycle",
                     "PeckEnabled", "PeckDepth", "DwellTime",
                     "MinCoverage", "AutoSelectTools", "Strategy", "MaxWallStock", "MaxFloorStock", "LeadOut",
-                    "StockAwareHeights", "MaxEngagement", "MinEngagement", "ToolChangeTime", "GrowthPattern"]
+                    "StockAwareHeights", "MaxEngagement", "MinEngagement", "ToolChangeTime", "GrowthPattern",
+                    "StickOut", "HolderDiameter", "HolderClearance"]
 
 # GrowthPattern property values -> the planner's "growth_pattern".
 GROWTH_PATTERNS = {"Auto": "auto", "Rows": "rows", "Offsets": "offsets"}
@@ -41,6 +42,15 @@ STRATEGIES = {
     "Grid (honeycomb)": {"strategy": "grid", "grid": {"pattern": "honeycomb"}},
     "Grid (square)": {"strategy": "grid", "grid": {"pattern": "square"}},
 }
+
+
+def mount_of(obj):
+    """The operation's stick-out, holder diameter and holder clearance in mm
+    (files from before them: none known, 1 mm)."""
+    def mm(name, default):
+        value = getattr(obj, name, None)
+        return float(value.Value) if value is not None else default
+    return mm("StickOut", 0.0), mm("HolderDiameter", 0.0), mm("HolderClearance", 1.0)
 
 
 def SetupProperties():
@@ -159,6 +169,15 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         _add(obj, "App::PropertyFloat", "ToolChangeTime",
              "Seconds one tool change takes on the machine: the automatic tool choice weighs it against the "
              "minutes a plunger saves", 20.0)
+        # What holds the plungers (the planner's holder.hpp), for bits that do not carry their own.
+        _add(obj, "App::PropertyLength", "StickOut",
+             "Length from each plunger's tip to its holder's face (0: not known, holders not checked); a bit's own "
+             "StickOut property wins", 0.0)
+        _add(obj, "App::PropertyLength", "HolderDiameter",
+             "Diameter of the holders, kept clear of the part and the standing material with the Stick Out (0: not "
+             "known, taken as wide as the pocket); a bit's own HolderDiameter property wins", 0.0)
+        _add(obj, "App::PropertyLength", "HolderClearance",
+             "What holders and shanks keep from the part and the standing material", 1.0)
         if not hasattr(obj, "GrowthPattern"):
             _add(obj, "App::PropertyEnumeration", "GrowthPattern",
                  "With a Max Engagement: how the cut grows from its starts, along rows, along offsets of the walls, "
@@ -375,7 +394,8 @@ def build_input(obj, tcs, faces, workdir, notes=None, floors=("z", "brep")):
         "version": 1,
         "boundary": pocket.boundary,
         "islands": pocket.islands,
-        "tools": [tools.spec(tc, obj.MaxEngagement, obj.MinEngagement) for tc in tcs],
+        "tools": [tools.spec(tc, obj.MaxEngagement, obj.MinEngagement, tools.Mount(*mount_of(obj)[:2])) for tc in tcs],
+        "holder_clearance": mount_of(obj)[2],
         # Rapids and retracts at the first plunger's rapid rates, as the post runs them.
         "time_model": tools.time_model(tcs[0], getattr(obj, "ToolChangeTime", 20.0)),
         "top_z": obj.StartDepth.Value,

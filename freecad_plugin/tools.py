@@ -66,12 +66,42 @@ def bit_length(bit, name):
     return float(value.Value if hasattr(value, "Value") else value)
 
 
-def spec(tc, max_engagement=100.0, min_engagement=0.0):
+class Mount:
+    """How the operation says its plungers are held, for bits that do not say:
+    stick-out and holder diameter in mm (0: not known)."""
+
+    def __init__(self, stick_out=0.0, holder_diameter=0.0):
+        self.stick_out = stick_out
+        self.holder_diameter = holder_diameter
+
+
+def held(tc, tool, bit, mount):
+    """The tool as mounted: the bit's own StickOut and HolderDiameter, else
+    the operation's (Mount); its ShankDiameter where wider than the cutter (it
+    starts at the flutes' top, so only with CuttingEdgeHeight)."""
+    stick_out = bit_length(bit, "StickOut") or (mount.stick_out if mount else 0.0)
+    if not stick_out or stick_out <= 0:
+        return
+    flute = tool.get("flute_length")
+    if flute and stick_out < flute:
+        raise ValueError("%s: its stick-out (%.2f mm) is shorter than its cutting edge height (%.2f mm): the holder "
+                         "would sit on the flutes" % (tc.Label, stick_out, flute))
+    tool["stick_out"] = stick_out
+    holder = bit_length(bit, "HolderDiameter") or (mount.holder_diameter if mount else 0.0)
+    if holder and holder > 0:
+        tool["holder_diameter"] = holder
+    shank = bit_length(bit, "ShankDiameter")
+    if shank and shank > tool["diameter"] and flute:
+        tool["shank_diameter"] = shank
+
+
+def spec(tc, max_engagement=100.0, min_engagement=0.0, mount=None):
     """A tool controller as a planner tool: diameter, number, shape, and what the
     bit says of it as a plunge mill: CuttingEdgeHeight (the flute length), and
     when present its own CoreDiameter (it does not cut at its centre; or
     CenterCutting false), MaxEngagement and MinEngagement properties. Without
-    those, the operation's limits in % of the diameter (100 and 0: none)."""
+    those, the operation's limits in % of the diameter (100 and 0: none).
+    What holds it: held()."""
     bit = tc.Tool
     diameter = float(bit.Diameter.Value if hasattr(bit.Diameter, "Value") else bit.Diameter)
     tool = {"diameter": diameter, "id": number(tc)}
@@ -113,6 +143,7 @@ def spec(tc, max_engagement=100.0, min_engagement=0.0):
         least = diameter * min_engagement / 100.0
     if least:
         tool["min_engagement"] = least
+    held(tc, tool, bit, mount)
     return tool
 
 

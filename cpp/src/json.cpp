@@ -100,7 +100,8 @@ std::vector<Tool> toolList(const json& ts, const std::string& what, std::vector<
     if (!ts[i].is_object()) throw Error(name + ": expected an object with a diameter");
     onlyKeys(ts[i],
              {"diameter", "id", "feed", "shape", "corner_radius", "max_engagement", "min_engagement",
-              "center_cutting", "core_diameter", "flute_length", "peck_depth"},
+              "center_cutting", "core_diameter", "flute_length", "peck_depth", "stick_out", "holder_diameter",
+              "shank_diameter"},
              name + ": ");
     if (!ts[i].contains("diameter")) throw Error(name + ".diameter: required");
     Tool t;
@@ -143,6 +144,10 @@ std::vector<Tool> toolList(const json& ts, const std::string& what, std::vector<
     limit("max_engagement", t.maxEngagement);
     limit("min_engagement", t.minEngagement);
     limit("flute_length", t.fluteLength);
+    // What holds it (holder.hpp): absent is not known.
+    for (const auto& [key, v] : {std::pair{"stick_out", &t.stickOut}, std::pair{"holder_diameter", &t.holderDiameter},
+                                 std::pair{"shank_diameter", &t.shankDiameter}})
+      if (ts[i].contains(key)) *v = length(key);
     if (ts[i].contains("core_diameter")) t.coreDiameter = length("core_diameter");
     if (ts[i].contains("peck_depth")) t.peckDepth = length("peck_depth");
     if (ts[i].contains("center_cutting")) {
@@ -314,6 +319,7 @@ void readScalars(const json& j, PlanInput& in) {
       {"max_floor_stock", &in.floor.maxFloorStock},
       {"lead_out", &in.motion.leadOut},
       {"rapid_clearance", &in.motion.rapidClearance},
+      {"holder_clearance", &in.motion.holderClearance},
       {"max_plunges", &in.maxPlunges},
       {"contact_ratio", &in.packing.contactRatio},
       {"peck_dwell", &in.motion.peckDwell}};
@@ -373,7 +379,7 @@ PlanInput planInputFromValue(const json& j) {
            {"version", "boundary", "islands", "tools", "top_z", "safe_z", "floor", "allowance", "strategy", "seed",
             "min_coverage", "contact_ratio", "packing_order", "growth_pattern", "sequencing", "start",
             "tool_library", "selection", "time_model", "grid", "max_wall_stock", "max_floor_stock", "lead_out",
-            "stock_aware_heights", "rapid_clearance", "max_plunges", "final_depth", "peck", "peck_dwell",
+            "stock_aware_heights", "rapid_clearance", "holder_clearance", "max_plunges", "final_depth", "peck", "peck_dwell",
             "sections", "material"},
            "input: ");
   PlanInput in;
@@ -448,11 +454,20 @@ json planToValue(const Plan& plan) {
     if (p.leadOut) o["lead_out"] = {p.leadOut->x, p.leadOut->y};
     if (p.leadOutZ) o["lead_out_z"] = *p.leadOutZ;
     if (!p.pecks.empty()) o["pecks"] = p.pecks;
+    if (p.holderLimited) o["holder_limited"] = true;
     out["plunges"].push_back(o);
   }
   const PlanStats& s = plan.stats;
   json per = json::array();
-  for (const ToolCount& t : s.perTool) per.push_back({{"tool_id", t.toolId}, {"diameter", t.diameter}, {"count", t.count}, {"peck_depth", t.peckDepth}});
+  for (const ToolCount& t : s.perTool) {
+    json o = {{"tool_id", t.toolId}, {"diameter", t.diameter}, {"count", t.count}, {"peck_depth", t.peckDepth}};
+    // The tool as mounted, when given, and what its holder stopped.
+    if (t.stickOut) o["stick_out"] = *t.stickOut;
+    if (t.holderDiameter) o["holder_diameter"] = *t.holderDiameter;
+    if (t.shankDiameter) o["shank_diameter"] = *t.shankDiameter;
+    if (t.stickOut) o["holder_limited"] = t.holderLimited;
+    per.push_back(o);
+  }
   out["stats"] = {{"plunge_count", s.plungeCount},
                   {"per_tool", per},
                   {"region_area", s.regionArea},

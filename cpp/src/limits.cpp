@@ -99,6 +99,7 @@ void checkScale(const PlanInput& in) {
   requireLength(in.floor.maxFloorStock, "max_floor_stock");
   requireLength(in.motion.leadOut, "lead_out");
   requireLength(in.motion.rapidClearance, "rapid_clearance");
+  requireLength(in.motion.holderClearance, "holder_clearance");
   if (in.motion.start) {
     requireLength(in.motion.start->x, "start.x");
     requireLength(in.motion.start->y, "start.y");
@@ -109,7 +110,8 @@ void checkScale(const PlanInput& in) {
       throw Error(name + ": a diameter of " + mm(t.diameter) + " mm is larger than any milling tool (" +
                   mm(kMaxToolDiameter) + " mm at most): is it in mm?");
     for (double v : {t.maxEngagement.value_or(0.0), t.minEngagement.value_or(0.0), t.coreDiameter,
-                     t.fluteLength.value_or(0.0), t.cornerRadius})
+                     t.fluteLength.value_or(0.0), t.cornerRadius, t.stickOut.value_or(0.0),
+                     t.holderDiameter.value_or(0.0), t.shankDiameter.value_or(0.0)})
       requireLength(v, name + ": a length of");
   }
   if (!(in.maxPlunges >= 1.0)) throw Error("max_plunges must be at least 1");

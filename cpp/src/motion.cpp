@@ -10,6 +10,7 @@
 
 #include "broken.hpp"
 #include "cuts.hpp"
+#include "holder.hpp"
 #include "lead_out.hpp"
 #include "touched.hpp"
 
@@ -128,7 +129,8 @@ class MotionPass {
  public:
   MotionPass(const Region& region, const DepthSolver& depths, const MotionOptions& in)
       : region_(region), depths_(depths), in_(in), stock_(stockOf(in.tools.all(), in.material, region)),
-        cuts_(kEngagementSkin, in.material), touched_(in.tools.all().front().diameter, in.material) {
+        cuts_(kEngagementSkin, in.material), touched_(in.tools.all().front().diameter, in.material),
+        mount_{in.settings.holderClearance, dist(region.minCorner(), region.maxCorner())} {
     over_.b = {"max_engagement", 0, 0, {}, 0, ""};
     thin_.b = {"min_engagement", 0, 0, {}, 0, ""};
     core_.b = {"core_diameter", 0, 0, {}, 0, ""};
@@ -148,6 +150,7 @@ class MotionPass {
   HeightField stock_;
   Cuts cuts_;  // the plunges alone (not their lead-outs) and the material before: the engagement as grown
   Touched touched_;
+  HolderSettings mount_;  // what the holders keep clear along the moves
   Worst over_, thin_, core_, deep_;
 };
 
@@ -212,7 +215,9 @@ void MotionPass::retractBefore(Plan& plan, size_t i) {
   q.retractZ = in_.safeZ;
   if (in_.settings.stockAwareHeights && q.toolId == p.toolId)
     q.retractZ = std::min(in_.safeZ, std::max({touched_.highestAlong(from, c, 0.5 * q.diameter) + in_.settings.rapidClearance,
-                                               p.approachZ, q.z + in_.settings.rapidClearance}));
+                                               p.approachZ, q.z + in_.settings.rapidClearance,
+                                               // its holder and shank over the stock along the way
+                                               holderFloor(in_.tools.byId(q.toolId), touched_, from, c, mount_)}));
 }
 
 // Plunge i's lead-out (lead_out.hpp), cut into the stock the next plunges meet.
@@ -225,7 +230,14 @@ void MotionPass::leadOut(Plan& plan, size_t i, const Tool& t) {
     // Back toward the plunge before, where the same tool just cut.
     std::optional<Plunge> back;
     if (i > 0 && plan.plunges[i - 1].toolId == p.toolId) back = plan.plunges[i - 1];
-    const LeadOut out = leadOutOf({in_, region_, depths_, stock_, touched_}, p, cutter, back);
+    LeadOut out = leadOutOf({in_, region_, depths_, stock_, touched_}, p, cutter, back);
+    // None where the holder or shank, moved along with the tip, would meet the
+    // stock (beside the walls of a deep pocket): no room at the walls.
+    if (out.to && holderFloor(t, touched_, {p.x, p.y}, *out.to, mount_) > out.z.value_or(p.z) + 1e-9) {
+      out.to.reset();
+      out.z.reset();
+      out.why = NoLeadOut::Walls;
+    }
     p.leadOut = out.to;
     p.leadOutZ = out.z;
     if (out.why == NoLeadOut::Material) ++plan.stats.noLeadOutMaterial;

@@ -17,6 +17,7 @@
 #include "depth.hpp"
 #include "engagement.hpp"
 #include "heightfield.hpp"
+#include "holder.hpp"
 #include "limits.hpp"
 #include "motion.hpp"
 #include "plunge/error.hpp"
@@ -278,7 +279,18 @@ void countPlunges(const PlanInput& in, Plan& out) {
   for (const Tool& t : in.tools) {
     const int n = static_cast<int>(std::count_if(out.plunges.begin(), out.plunges.end(),
                                                  [&](const Plunge& p) { return p.toolId == t.id; }));
-    if (n > 0) out.stats.perTool.push_back({t.id, t.diameter, n, peckDepthOf(t)});
+    if (n == 0) continue;
+    ToolCount c;
+    c.toolId = t.id;
+    c.diameter = t.diameter;
+    c.count = n;
+    c.peckDepth = peckDepthOf(t);
+    c.stickOut = t.stickOut;
+    c.holderDiameter = t.holderDiameter;
+    c.shankDiameter = t.shankDiameter;
+    c.holderLimited = static_cast<int>(std::count_if(out.plunges.begin(), out.plunges.end(),
+                                                     [&](const Plunge& p) { return p.toolId == t.id && p.holderLimited; }));
+    out.stats.perTool.push_back(c);
   }
   out.stats.startHoles = static_cast<int>(
       std::count_if(out.plunges.begin(), out.plunges.end(), [](const Plunge& p) { return p.startHole; }));
@@ -655,6 +667,11 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   }
   MotionOptions motion = motionOptions(in, tools, material, progress);
   out.plunges = splitIntoLevels(out.plunges, motion, out.stats);
+  // Holders and shanks kept clear of the part and the standing material, in
+  // the posted order: plunges stop where they clear (holder.hpp).
+  const HolderSettings mount{in.motion.holderClearance, dist(pocket.region.minCorner(), pocket.region.maxCorner())};
+  HolderClearance holders = clearHolders(out.plunges, tools, material, mount);
+  out.plunges = std::move(holders.plunges);
   // Measured on the final plunges (the rest step and the limits add to the
   // covering's), on another thread with its own floor while the motion is
   // planned: the moves between the plunges change neither where they cut nor
@@ -685,6 +702,7 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   wallBandAboveStats(in, tools, out);
   out.warnings.insert(out.warnings.end(), motionWarnings.begin(), motionWarnings.end());
   out.broken.insert(out.broken.end(), motionBroken.begin(), motionBroken.end());
+  for (size_t k = 0; k < holders.broken.size(); ++k) sayBroken(out, holders.said[k], holders.broken[k]);
   reportFloorStock(in, measured.stock, out, held);
   countPlunges(in, out);
   depthFallbacks(depths, out);

@@ -6,6 +6,16 @@
 
 namespace plunge {
 
+namespace {
+
+std::string fixed1(double v) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(1) << v;
+  return s.str();
+}
+
+}  // namespace
+
 std::string planSummary(const Plan& plan) {
   const PlanStats& st = plan.stats;
   std::ostringstream s;
@@ -25,6 +35,15 @@ std::string planSummary(const Plan& plan) {
   if (st.startHoles) s << "; " << st.startHoles << " start holes";
   if (st.peckedPlunges) s << "; " << st.peckedPlunges << " deep holes into solid pecked";
   if (st.levels > 1) s << "; " << st.levels << " levels (flute length)";
+  // The tools as mounted, where given: what the holders were kept clear with.
+  for (const ToolCount& t : st.perTool) {
+    if (!t.stickOut) continue;
+    s << "; T" << t.toolId << " held " << std::setprecision(1) << *t.stickOut << " mm from its tip in "
+      << (t.holderDiameter ? "a " + fixed1(*t.holderDiameter) + " mm holder" : std::string("a holder of unknown diameter"));
+    if (t.shankDiameter) s << ", shank " << fixed1(*t.shankDiameter) << " mm";
+    if (t.holderLimited) s << " (" << t.holderLimited << " plunges stopped above their depth by it)";
+    s << std::setprecision(2);
+  }
   if (const int without = st.noLeadOutMaterial + st.noLeadOutWalls; st.leadOuts + without > 0) {
     s << "; lead-outs on " << st.leadOuts << " plunges";
     if (st.raisedLeadOuts) s << ", " << st.raisedLeadOuts << " of them raised out of their neighbours' steps";

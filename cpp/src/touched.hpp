@@ -22,6 +22,9 @@ class Touched {
   // The stock before any disk: the material the operations before left.
   Touched(double bucket, const Material& material) : bucket_(bucket), top_(material.topZ()), material_(material) {}
   void add(Vec2 c, double r, double bottom);
+  // The top of the stock: the highest material anywhere (walls included).
+  double topZ() const { return top_; }
+  double bucket() const { return bucket_; }  // the side of its grid's cells
   // Centres of the disks at least `r` wide, cut no higher than `bottom`,
   // between `from` and `to` away from c, nearest first (at most `count`).
   std::vector<Vec2> holesNear(Vec2 c, double r, double bottom, double from, double to, size_t count) const;

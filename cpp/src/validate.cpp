@@ -42,6 +42,16 @@ void validateMill(const Tool& t, const std::string& name) {
                        " the diameter");
   if (t.fluteLength && *t.fluteLength <= cutterProfile(cutterOf(t), 0.5 * t.diameter) + 0.1)
     throw Error(name + ".flute_length must exceed the corner radius by 0.1 mm or more");
+  // What holds it (holder.hpp).
+  for (const std::optional<double>& v : {t.stickOut, t.holderDiameter, t.shankDiameter})
+    if (v && !(std::isfinite(*v) && *v > 0.0))
+      throw Error(name + ": stick_out, holder_diameter and shank_diameter must be > 0 (leave one out if not known)");
+  if ((t.holderDiameter || t.shankDiameter) && !t.stickOut)
+    throw Error(name + ": holder_diameter and shank_diameter need the stick_out (mm from the tip to the holder's face)");
+  if (t.stickOut && t.fluteLength && *t.stickOut < *t.fluteLength)
+    throw Error(name + ".stick_out is shorter than its flute_length: the holder's face would be on the flutes");
+  if (t.shankDiameter && *t.shankDiameter > t.diameter && !t.fluteLength)
+    throw Error(name + ".shank_diameter is wider than the cutter: its flute_length must say where the shank starts");
 }
 
 // Each tool's numbers, then the tools sorted largest first.
@@ -136,6 +146,8 @@ void validateOptions(const PlanInput& in) {
   if (in.motion.leadOut < 0.0) throw Error("lead_out must be >= 0 (0: retract straight up)");
   requireFinite(in.motion.rapidClearance, "rapid_clearance");
   if (in.motion.rapidClearance <= 0.0) throw Error("rapid_clearance must be > 0");
+  requireFinite(in.motion.holderClearance, "holder_clearance");
+  if (in.motion.holderClearance < 0.0) throw Error("holder_clearance must be >= 0");
   requireFinite(in.motion.peckDwell, "peck_dwell");
   if (in.motion.peckDwell < 0.0) throw Error("peck_dwell must be >= 0 (seconds; 0: no dwell)");
   if (in.motion.start) {

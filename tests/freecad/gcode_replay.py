@@ -232,3 +232,40 @@ def raster_triangle(surface, stock, tri):
     inside = (l0 >= -1e-9) & (l1 >= -1e-9) & (l2 >= -1e-9)
     z = np.where(inside, l0 * z0 + l1 * z1 + l2 * z2, -np.inf)
     surface[j0:j1, i0:i1] = np.maximum(surface[j0:j1, i0:i1], z)
+
+
+# -- holders and shanks -----------------------------------------------------------------
+def holder_hits(program, stock, tools, holders, clearance, slack=None):
+    """Replays the program on the stock (cutting it as it goes) and checks, before
+    each move, that every part of the tool wider than its cutter keeps
+    `clearance` from the stock under it: holders = {tool number: [(mm above the
+    tip where the part starts, its radius)]}. A move is checked at its lowest
+    tip height along its whole XY segment. The raster's cuts may reach up to
+    `slack` (default: a cell) beyond the true tool, so the search is that much
+    narrower. Returns (hits, the worst mm into the clearance, the first hit's move)."""
+    slack = stock.cell if slack is None else slack
+    hits, worst, first = 0, 0.0, None
+    for m in program.moves:
+        z = min(m.a[2], m.b[2])
+        r = tools[m.tool][0]
+        for start, radius in holders.get(m.tool, []):
+            if radius <= r:
+                continue
+            reach = radius + clearance - slack
+            i0 = max(stock.index(min(m.a[0], m.b[0]) - reach, stock.x0), 0)
+            i1 = min(stock.index(max(m.a[0], m.b[0]) + reach, stock.x0) + 1, len(stock.xs))
+            j0 = max(stock.index(min(m.a[1], m.b[1]) - reach, stock.y0), 0)
+            j1 = min(stock.index(max(m.a[1], m.b[1]) + reach, stock.y0) + 1, len(stock.ys))
+            if i0 >= i1 or j0 >= j1:
+                continue
+            d = segment_distance(stock.xs[None, i0:i1], stock.ys[j0:j1, None], m.a, m.b)
+            under = stock.z[j0:j1, i0:i1][d <= reach]
+            if under.size == 0:
+                continue
+            gap = z + start - float(under.max())
+            if gap < clearance - 1e-6:
+                hits += 1
+                worst = max(worst, clearance - gap)
+                first = first or m
+        stock.cut(m.a, m.b, tools[m.tool])
+    return hits, worst, first

@@ -39,6 +39,13 @@ struct Tool {
   // "peck_depth": a hole drilled into solid deeper than this is pecked, mm
   // (0: three diameters, what plunge-mill makers advise; tools.hpp peckDepthOf).
   double peckDepth = 0.0;
+  // What holds it (holder.hpp): "stick_out", mm from the tip to the holder's
+  // face (absent: not checked); "holder_diameter" (absent with a stick-out:
+  // as wide as the pocket); "shank_diameter", from the flutes' top to the
+  // holder (absent: the cutting diameter).
+  std::optional<double> stickOut = std::nullopt;
+  std::optional<double> holderDiameter = std::nullopt;
+  std::optional<double> shankDiameter = std::nullopt;
 };
 
 // --- the input's options ------------------------------------------------------
@@ -159,6 +166,7 @@ struct MotionSettings {
   double leadOut = 0.5;
   bool stockAwareHeights = true;
   double rapidClearance = 1.0;
+  double holderClearance = 1.0;  // "holder_clearance": what a shank or holder keeps from the stock (holder.hpp)
   bool peck = true;
   double peckDwell = 0.0;
   TourMethod sequencing = TourMethod::LocalSearch;  // "sequencing": or "annealing" (the thesis)
@@ -251,6 +259,7 @@ struct Plunge {
   // clear the chips and rapids back to just above that depth (motion.hpp).
   std::vector<double> pecks;
   bool rest = false;        // added by the rest step in Z (stats.rest_plunges; not in the JSON)
+  bool holderLimited = false;  // stopped above its depth where the holder or shank clears (holder.hpp)
 };
 
 struct ToolCount {
@@ -258,6 +267,9 @@ struct ToolCount {
   double diameter = 0.0;
   int count = 0;
   double peckDepth = 0.0;  // its holes into solid are pecked this deep (tools.hpp peckDepthOf)
+  // The tool as mounted, as the plan used it (Tool's fields of the same names).
+  std::optional<double> stickOut, holderDiameter, shankDiameter;
+  int holderLimited = 0;  // its plunges stopped above their depth by the holder or shank
 };
 
 struct PlanStats {
