@@ -78,26 +78,39 @@ HolderClearance clearHolders(const std::vector<Plunge>& ordered, const ToolTable
   Touched stock(tools.all().front().diameter, material);
   // The deepest cut so far at each tool's position: a level raised to where
   // an earlier level already cut adds nothing.
-  std::map<std::tuple<int, double, double>, double> deepest;
-  std::map<int, Worst> worst;
+  // Each tool's position (its levels share it): the depth it was to reach,
+  // the deepest it cuts, and what stopped it last.
+  struct Spot {
+    double target = std::numeric_limits<double>::infinity();
+    double cut = std::numeric_limits<double>::infinity();
+    Limiter by = Limiter::None;
+  };
+  std::map<std::tuple<int, double, double>, Spot> spots;
   for (const Plunge& p : ordered) {
     const Tool& t = tools.byId(p.toolId);
     const Vec2 c{p.x, p.y};
+    Spot& spot = spots[std::make_tuple(p.toolId, p.x, p.y)];
+    spot.target = std::min(spot.target, p.z);
     Plunge q = p;
-    const auto key = std::make_tuple(p.toolId, p.x, p.y);
     const Reach f = floorOf(t, stock, c, c, settings);
     if (q.z < f.z - 1e-9) {
       q.z = f.z;
       q.holderLimited = true;
-      Worst& w = worst[t.id];
-      ++w.count;
-      if (f.z - p.z > w.excess) w = {w.count, f.z - p.z, c, f.by};
-      if (auto it = deepest.find(key); it != deepest.end() && it->second <= q.z + 1e-9) continue;
+      spot.by = f.by;
+      // A level raised to where an earlier level already cut adds nothing.
+      if (spot.cut <= q.z + 1e-9) continue;
     }
-    auto [it, added] = deepest.emplace(key, q.z);
-    if (!added) it->second = std::min(it->second, q.z);
+    spot.cut = std::min(spot.cut, q.z);
     stock.add(c, 0.5 * t.diameter, q.z + cutterProfile(cutterOf(t), 0.5 * t.diameter));
     out.plunges.push_back(q);
+  }
+  // Per tool: the places its plunges stop above their depth, and the worst.
+  std::map<int, Worst> worst;
+  for (const auto& [key, spot] : spots) {
+    if (!(spot.cut > spot.target + 1e-9)) continue;
+    Worst& w = worst[std::get<0>(key)];
+    ++w.count;
+    if (spot.cut - spot.target > w.excess) w = {w.count, spot.cut - spot.target, {std::get<1>(key), std::get<2>(key)}, spot.by};
   }
   for (const auto& [id, w] : worst) {
     const Tool& t = tools.byId(id);
@@ -125,8 +138,9 @@ HolderClearance clearHolders(const std::vector<Plunge>& ordered, const ToolTable
                    : "a stick-out of " + mm(b.worst) + " mm" +
                          (t.holderDiameter ? std::string(", or a slimmer holder,") : std::string(" (or the holder's diameter given)")) +
                          " would reach");
-    out.said.push_back(std::to_string(w.count) + " plunges of " + name + " stop up to " + mm(w.excess) +
-                       " mm above their depth where its " + (shank ? "shank" : "holder") + " would meet the stock");
+    out.said.push_back("at " + std::to_string(w.count) + " places the plunges of " + name + " stop up to " +
+                       mm(w.excess) + " mm above their depth where its " + (shank ? "shank" : "holder") +
+                       " would meet the stock");
     out.broken.push_back(std::move(b));
   }
   return out;

@@ -122,7 +122,8 @@ class SvgPicture {
     switch (view_) {
       case SvgView::Plan: return 3 + plan_.stats.perTool.size() + (in_.material ? 1 : 0);
       case SvgView::Stock: return 3 + std::min<size_t>(plan_.broken.size(), kMaxBrokenLines);
-      case SvgView::Heights: return 3;
+      case SvgView::Heights:
+        return 3 + (std::any_of(plan_.plunges.begin(), plan_.plunges.end(), [](const Plunge& p) { return p.holderLimited; }) ? 1 : 0);
     }
     return 3;
   }
@@ -279,6 +280,11 @@ class SvgPicture {
     // Deepest last, on top: where the tool goes lowest stays visible.
     std::stable_sort(order.begin(), order.end(), [](const Plunge* a, const Plunge* b) { return a->z > b->z; });
     for (const Plunge* p : order) disk(*p, depthColour(p->z), 0.85, "#333");
+    // The plunges a holder or shank stopped above their depth: a red ring each.
+    for (const Plunge& p : plan_.plunges)
+      if (p.holderLimited)
+        s_ << "<circle cx=\"" << p.x << "\" cy=\"" << -p.y << "\" r=\"" << 0.35 * p.diameter
+           << "\" fill=\"none\" stroke=\"" << kHolderRing << "\" stroke-width=\"" << 2 * sw_ << "\"/>\n";
   }
 
   std::string depthColour(double z) const {
@@ -366,9 +372,12 @@ class SvgPicture {
     swatch(lo_.x + fs_, y_, depthColour(zHi_));
     s_ << "\n";
     line(fs_ * 2.4, number(zLo_) + " mm (dark) to " + number(zHi_) + " mm (light)");
+    const long held = std::count_if(plan_.plunges.begin(), plan_.plunges.end(), [](const Plunge& p) { return p.holderLimited; });
+    if (held > 0) line(0, std::to_string(held) + " plunges stopped above their depth by the holder (red rings)");
   }
 
   static constexpr size_t kMaxBrokenLines = 6;
+  static constexpr const char* kHolderRing = "#e00000";
   const PlanInput& in_;
   const Plan& plan_;
   SvgView view_;
@@ -382,7 +391,10 @@ class SvgPicture {
 }  // namespace
 
 std::vector<SvgView> svgViews(const PlanInput& input) {
-  if (input.floor.surface.kind == Floor::Kind::Flat) return {SvgView::Plan, SvgView::Stock};
+  // Stop heights differ over a sculptured floor, and where a holder may stop plunges.
+  const std::vector<Tool>& tools = input.choice.automatic ? input.choice.library : input.tools;
+  const bool held = std::any_of(tools.begin(), tools.end(), [](const Tool& t) { return t.stickOut.has_value(); });
+  if (input.floor.surface.kind == Floor::Kind::Flat && !held) return {SvgView::Plan, SvgView::Stock};
   return {SvgView::Plan, SvgView::Stock, SvgView::Heights};
 }
 

@@ -1,4 +1,5 @@
 // The plan's pictures (svg.hpp): one view per question.
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -116,4 +117,26 @@ TEST(Svg, PlanViewShowsTheMaterialBeforeAsItsBackground) {
   }
   in.material.reset();
   EXPECT_EQ(planToSvg(in, plan(in), SvgView::Plan).find("material before it"), std::string::npos);
+}
+
+// A tool with a stick-out: the stop heights are drawn over a flat floor too,
+// a red ring on each plunge its holder stopped, counted in the legend.
+TEST(Svg, HeightsMarkThePlungesAHolderStopped) {
+  PlanInput in = planInputFromJson(test::smallJobJson());
+  in.floor.surface.z = -60.0;
+  EXPECT_EQ(svgViews(in).size(), 2u);
+  for (Tool& t : in.tools) {
+    t.stickOut = 40.0;
+    t.holderDiameter = 2.5 * t.diameter;
+  }
+  ASSERT_EQ(svgViews(in).size(), 3u);
+  const Plan p = plan(in);
+  const long held = std::count_if(p.plunges.begin(), p.plunges.end(), [](const Plunge& q) { return q.holderLimited; });
+  ASSERT_GT(held, 0);
+  const std::string svg = planToSvg(in, p, SvgView::Heights);
+  long rings = 0;
+  for (size_t at = svg.find("stroke=\"#e00000\""); at != std::string::npos; at = svg.find("stroke=\"#e00000\"", at + 1))
+    ++rings;
+  EXPECT_EQ(rings, held);
+  EXPECT_NE(svg.find(std::to_string(held) + " plunges stopped above their depth by the holder"), std::string::npos) << svg;
 }
