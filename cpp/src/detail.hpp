@@ -41,6 +41,15 @@ inline std::string formatPoint(Vec2 p) {
   return formatPoint(x, 2);
 }
 
+// A number with a fixed count of decimals, for messages ("12.50").
+inline std::string fixed(double v, int decimals = 2) {
+  std::ostringstream s;
+  s << std::fixed;
+  s.precision(decimals);
+  s << v;
+  return s.str();
+}
+
 // An axis-aligned bounding box grown point by point.
 struct Bounds {
   Vec2 lo{kInf, kInf};

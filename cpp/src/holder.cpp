@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <limits>
 #include <map>
-#include <sstream>
 #include <tuple>
 
 #include "depth.hpp"
+#include "detail.hpp"
 
 namespace plunge {
 
@@ -59,12 +58,6 @@ struct Worst {
   Limiter by = Limiter::None;
 };
 
-std::string mm(double v) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(2) << v;
-  return s.str();
-}
-
 }  // namespace
 
 double holderFloor(const Tool& t, const Touched& stock, Vec2 a, Vec2 b, const HolderSettings& settings) {
@@ -75,6 +68,11 @@ HolderClearance clearHolders(const std::vector<Plunge>& ordered, const ToolTable
                              const HolderSettings& settings) {
   const double clearance = settings.clearance;
   HolderClearance out;
+  // No tool says what holds it: nothing to replay.
+  if (std::none_of(tools.all().begin(), tools.all().end(), holderKnown)) {
+    out.plunges = ordered;
+    return out;
+  }
   Touched stock(tools.all().front().diameter, material);
   // The deepest cut so far at each tool's position: a level raised to where
   // an earlier level already cut adds nothing.
@@ -112,6 +110,7 @@ HolderClearance clearHolders(const std::vector<Plunge>& ordered, const ToolTable
     ++w.count;
     if (spot.cut - spot.target > w.excess) w = {w.count, spot.cut - spot.target, {std::get<1>(key), std::get<2>(key)}, spot.by};
   }
+  const auto mm = [](double v) { return detail::fixed(v); };
   for (const auto& [id, w] : worst) {
     const Tool& t = tools.byId(id);
     const std::string name = "tool " + std::to_string(id);

@@ -6,16 +6,6 @@
 
 namespace plunge {
 
-namespace {
-
-std::string fixed1(double v) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(1) << v;
-  return s.str();
-}
-
-}  // namespace
-
 std::string planSummary(const Plan& plan) {
   const PlanStats& st = plan.stats;
   std::ostringstream s;
@@ -38,9 +28,10 @@ std::string planSummary(const Plan& plan) {
   // The tools as mounted, where given: what the holders were kept clear with.
   for (const ToolCount& t : st.perTool) {
     if (!t.stickOut) continue;
-    s << "; T" << t.toolId << " held " << std::setprecision(1) << *t.stickOut << " mm from its tip in "
-      << (t.holderDiameter ? "a " + fixed1(*t.holderDiameter) + " mm holder" : std::string("a holder of unknown diameter"));
-    if (t.shankDiameter) s << ", shank " << fixed1(*t.shankDiameter) << " mm";
+    s << std::setprecision(1) << "; T" << t.toolId << " held " << *t.stickOut << " mm from its tip in ";
+    if (t.holderDiameter) s << "a " << *t.holderDiameter << " mm holder";
+    else s << "a holder of unknown diameter";
+    if (t.shankDiameter) s << ", shank " << *t.shankDiameter << " mm";
     if (t.holderLimited) s << " (" << t.holderLimited << " plunges stopped above their depth by it)";
     s << std::setprecision(2);
   }
