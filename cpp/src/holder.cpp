@@ -19,12 +19,10 @@ namespace {
 // the pocket (Touched scans every cell under it).
 constexpr double kWideCells = 32.0;
 
-// Which part of the tool sets its floor at a place.
-enum class Limiter { None, Shank, Holder };
-
+// Which part of the tool sets its floor at a place, and the floor.
 struct Reach {
   double z = -std::numeric_limits<double>::infinity();
-  Limiter by = Limiter::None;
+  HolderPart by = HolderPart::Holder;
 };
 
 // Each cylinder wider than the cutter, starting `from` mm above the tip with
@@ -35,7 +33,7 @@ Reach floorOf(const Tool& t, const Touched& stock, Vec2 a, Vec2 b, const HolderS
   Reach f;
   if (!holderKnown(t)) return f;
   const double r = 0.5 * t.diameter;
-  auto keep = [&](double from, double rho, Limiter by) {
+  auto keep = [&](double from, double rho, HolderPart by) {
     if (rho <= r + 1e-9) return;  // inside the hole the flutes cut
     // As wide as the pocket (or so wide that the search would cost more than
     // the height saves): the top of the stock.
@@ -44,18 +42,18 @@ Reach floorOf(const Tool& t, const Touched& stock, Vec2 a, Vec2 b, const HolderS
     const double top = wide ? stock.topZ() : stock.highestAlong(a, b, reach);
     if (const double z = top + clearance - from; z > f.z) f = {z, by};
   };
-  if (t.shankDiameter && t.fluteLength) keep(*t.fluteLength, 0.5 * *t.shankDiameter, Limiter::Shank);
+  if (t.shankDiameter && t.fluteLength) keep(*t.fluteLength, 0.5 * *t.shankDiameter, HolderPart::Shank);
   keep(*t.stickOut, t.holderDiameter ? 0.5 * *t.holderDiameter : std::numeric_limits<double>::infinity(),
-       Limiter::Holder);
+       HolderPart::Holder);
   return f;
 }
 
-// The worst raised plunge of one tool.
+// The worst stop of one tool.
 struct Worst {
   int count = 0;
   double excess = -1.0;
   Vec2 at;
-  Limiter by = Limiter::None;
+  HolderPart by = HolderPart::Holder;
 };
 
 }  // namespace
@@ -66,7 +64,6 @@ double holderFloor(const Tool& t, const Touched& stock, Vec2 a, Vec2 b, const Ho
 
 HolderClearance clearHolders(const std::vector<Plunge>& ordered, const ToolTable& tools, const Material& material,
                              const HolderSettings& settings) {
-  const double clearance = settings.clearance;
   HolderClearance out;
   // No tool says what holds it: nothing to replay.
   if (std::none_of(tools.all().begin(), tools.all().end(), holderKnown)) {
@@ -74,14 +71,12 @@ HolderClearance clearHolders(const std::vector<Plunge>& ordered, const ToolTable
     return out;
   }
   Touched stock(tools.all().front().diameter, material);
-  // The deepest cut so far at each tool's position: a level raised to where
-  // an earlier level already cut adds nothing.
   // Each tool's position (its levels share it): the depth it was to reach,
   // the deepest it cuts, and what stopped it last.
   struct Spot {
     double target = std::numeric_limits<double>::infinity();
     double cut = std::numeric_limits<double>::infinity();
-    Limiter by = Limiter::None;
+    HolderPart by = HolderPart::Holder;
   };
   std::map<std::tuple<int, double, double>, Spot> spots;
   for (const Plunge& p : ordered) {
@@ -102,19 +97,42 @@ HolderClearance clearHolders(const std::vector<Plunge>& ordered, const ToolTable
     stock.add(c, 0.5 * t.diameter, q.z + cutterProfile(cutterOf(t), 0.5 * t.diameter));
     out.plunges.push_back(q);
   }
+  for (const auto& [key, spot] : spots)
+    if (spot.cut > spot.target + 1e-9)
+      out.stops.push_back({std::get<0>(key), {std::get<1>(key), std::get<2>(key)}, spot.target, spot.cut, spot.by});
+  return out;
+}
+
+std::vector<std::string> uncheckedHolders(const std::vector<Plunge>& plunges, const ToolTable& tools, double topZ) {
+  std::map<int, double> deepest;  // below top_z
+  for (const Plunge& p : plunges) {
+    const Tool& t = tools.byId(p.toolId);
+    if (holderKnown(t) || !t.fluteLength || topZ - p.z <= *t.fluteLength + 1e-9) continue;
+    deepest[p.toolId] = std::max(deepest[p.toolId], topZ - p.z);
+  }
+  std::vector<std::string> out;
+  for (const auto& [id, depth] : deepest)
+    out.push_back("tool " + std::to_string(id) + " goes " + detail::fixed(depth) + " mm below top_z, deeper than its " +
+                  detail::fixed(*tools.byId(id).fluteLength) +
+                  " mm flutes, and no stick_out is given: what holds it is not checked against the part (give its "
+                  "stick_out and holder_diameter)");
+  return out;
+}
+
+HolderLimits holderLimits(const std::vector<HolderStop>& stops, const ToolTable& tools, double clearance) {
+  HolderLimits out;
   // Per tool: the places its plunges stop above their depth, and the worst.
   std::map<int, Worst> worst;
-  for (const auto& [key, spot] : spots) {
-    if (!(spot.cut > spot.target + 1e-9)) continue;
-    Worst& w = worst[std::get<0>(key)];
+  for (const HolderStop& s : stops) {
+    Worst& w = worst[s.toolId];
     ++w.count;
-    if (spot.cut - spot.target > w.excess) w = {w.count, spot.cut - spot.target, {std::get<1>(key), std::get<2>(key)}, spot.by};
+    if (s.cut - s.target > w.excess) w = {w.count, s.cut - s.target, s.at, s.by};
   }
   const auto mm = [](double v) { return detail::fixed(v); };
   for (const auto& [id, w] : worst) {
     const Tool& t = tools.byId(id);
     const std::string name = "tool " + std::to_string(id);
-    const bool shank = w.by == Limiter::Shank;
+    const bool shank = w.by == HolderPart::Shank;
     BrokenLimit b;
     b.limit = "stick_out";
     b.asked = *t.stickOut;

@@ -37,15 +37,38 @@ struct HolderSettings {
 // nothing of it is known.
 double holderFloor(const Tool& t, const Touched& stock, Vec2 a, Vec2 b, const HolderSettings& settings);
 
+// Which part of a tool stopped a plunge.
+enum class HolderPart { Shank, Holder };
+
+// A place where a tool's plunges (its levels there) stop above the depth they
+// were to reach.
+struct HolderStop {
+  int toolId = 0;
+  Vec2 at;
+  double target = 0.0;  // the depth it was to reach
+  double cut = 0.0;     // the deepest it reaches
+  HolderPart by = HolderPart::Holder;
+};
+
 // What clearHolders changed: the plunges in the same order, each raised to its
 // holder floor where needed (Plunge::holderLimited) and left out where a
-// raised level cuts nothing a level before did not; and per tool the worst,
-// said as the stick-out that would reach (BrokenLimit "stick_out").
+// raised level cuts nothing a level before did not; and the places stopped.
 struct HolderClearance {
   std::vector<Plunge> plunges;
+  std::vector<HolderStop> stops;
+};
+
+// The stops no other tool made up for, said per tool: its worst as the
+// stick-out that would reach (BrokenLimit "stick_out"), with a sentence each.
+struct HolderLimits {
   std::vector<BrokenLimit> broken;
   std::vector<std::string> said;  // one sentence per entry of `broken`
 };
+// Tools whose plunges go deeper than their flutes with nothing known above
+// them (no stick_out): what holds them is not checked, said once per tool.
+std::vector<std::string> uncheckedHolders(const std::vector<Plunge>& plunges, const ToolTable& tools, double topZ);
+
+HolderLimits holderLimits(const std::vector<HolderStop>& stops, const ToolTable& tools, double clearance);
 
 // The posted plunges (levels split) replayed in order on the stock before
 // this operation (material) with the part around the pocket.

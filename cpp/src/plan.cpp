@@ -11,6 +11,7 @@
 #include <cmath>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "detail.hpp"
 #include "covering.hpp"
@@ -550,6 +551,82 @@ std::vector<Plunge> dropAirPlunges(const PlanInput& in, const Material& material
   return inAir;
 }
 
+// The tool that reaches (holder.hpp): the area the stopped plunges were to
+// cut, covered by the tools no holder stopped anywhere, as the covering covers
+// gaps (every plunge that reached its depth counts as cut). Each new plunge
+// stops on the floor as any other; posted after the larger tools, it meets
+// the material they left, and the replay checks its own holder.
+std::vector<CutDisk> reachWhereHeld(const PlanInput& in, const ToolTable& tools, const Region& region,
+                                    const DepthSolver& depths, const HolderClearance& held) {
+  std::set<std::tuple<int, double, double>> stopped;
+  std::set<int> stoppedTools;
+  for (const HolderStop& s : held.stops) {
+    stopped.insert({s.toolId, s.at.x, s.at.y});
+    stoppedTools.insert(s.toolId);
+  }
+  std::vector<const Tool*> reaching;
+  std::vector<double> radii;
+  for (const Tool& t : tools.all())
+    if (!stoppedTools.count(t.id)) {
+      reaching.push_back(&t);
+      radii.push_back(0.5 * t.diameter);
+    }
+  std::vector<CutDisk> out;
+  if (reaching.empty()) return out;
+  std::set<std::tuple<int, double, double>> seen;
+  std::vector<PackedDisk> through;  // the tool index is not read for these
+  for (const Plunge& p : held.plunges) {
+    const auto key = std::make_tuple(p.toolId, p.x, p.y);
+    if (stopped.count(key) || !seen.insert(key).second) continue;
+    const double r = 0.5 * tools.byId(p.toolId).diameter;
+    through.push_back({{p.x, p.y}, r, r, -1});
+  }
+  CoveringOptions co;
+  co.allowance = in.radialAllowance;
+  co.wallStock = in.covering.maxWallStock;
+  co.minCoverage = in.covering.minCoverage;
+  co.measureCore = false;
+  const CoverResult cover = coverRegion(region, radii, through, co);
+  const double lowest = in.floor.finalDepth ? *in.floor.finalDepth + in.floorAllowance : -std::numeric_limits<double>::infinity();
+  for (size_t k = through.size(); k < cover.disks.size(); ++k) {
+    const CoverDisk& n = cover.disks[k];
+    const Tool& t = *reaching[n.tool];
+    double z = lowest;
+    try {
+      z = std::max(z, depths.plungeHeight(n.center, cutterOf(t), in.floorAllowance, in.radialAllowance));
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error&) {
+      continue;  // no floor under it
+    }
+    if (z < in.topZ) out.push_back({n.center, t.id, z});
+  }
+  return out;
+}
+
+// The stops no plunge of another tool made up for: some of the disk the
+// stopped plunge was to cut (within the core, or the accessible area without
+// a wall band) is cut to depth by none of the plunges that reached theirs.
+std::vector<HolderStop> stillHeld(const Pocket& pocket, const ToolTable& tools,
+                                  const std::vector<HolderStop>& stops, const std::vector<Plunge>& plunges) {
+  std::set<std::tuple<int, double, double>> stopped;
+  for (const HolderStop& s : stops) stopped.insert({s.toolId, s.at.x, s.at.y});
+  std::vector<Circle> reached;
+  for (const Plunge& p : plunges)
+    if (!stopped.count({p.toolId, p.x, p.y})) reached.push_back({{p.x, p.y}, 0.5 * p.diameter});
+  const Polygons& area = pocket.core.empty() ? pocket.accessible : pocket.core;
+  std::vector<HolderStop> out;
+  for (const HolderStop& s : stops) {
+    const double r = 0.5 * tools.byId(s.toolId).diameter;
+    std::vector<Circle> near;
+    for (const Circle& c : reached)
+      if (dist(c.c, s.at) < c.r + r) near.push_back(c);
+    const Polygons mine = poly::intersect({poly::disk({s.at, r})}, area);
+    if (poly::area(uncoveredRegion(mine, near)) > kSliverArea) out.push_back(s);
+  }
+  return out;
+}
+
 EngagementOptions engagementOptions(const PlanInput& in, const ToolTable& tools, const Material& material,
                                     const Progress& progress) {
   EngagementOptions o;
@@ -648,30 +725,44 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   progress.stage(0.02, "analysing the floor");
   const DepthSolver depths(*floor, lo, hi, std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)),
                            progress);
-  bool held = false;
-  std::vector<CutDisk> disks = placeAndDepth(in, tools, pocket, *floor, depths, std::move(placed), out, held, progress);
+  bool finalDepthHeld = false;
+  std::vector<CutDisk> disks =
+      placeAndDepth(in, tools, pocket, *floor, depths, std::move(placed), out, finalDepthHeld, progress);
   const std::vector<Plunge> inAir = dropAirPlunges(in, material, tools, pocket.region, disks);
   out.stats.airPlunges = static_cast<int>(inAir.size());
   out.stats.restMaterial = material.known();
 
-  progress.stage(0.9, "ordering the plunges");
-  sequence(in, tools, disks, out, progress);
-  // Real plunge mills: engagement limits and cores (positions and order grown
-  // together), flute length (levels), then heights and lead-outs.
+  // The plunges in the posted order: each tool's tour, then (real plunge
+  // mills) engagement limits and cores (positions and order grown together),
+  // flute length (levels), holders and shanks kept clear of the part and the
+  // standing material, in that order: plunges stop where they clear (holder.hpp).
+  MotionOptions motion = motionOptions(in, tools, material, progress);
+  const HolderSettings mount{in.motion.holderClearance, dist(pocket.region.minCorner(), pocket.region.maxCorner())};
   const bool limited = std::any_of(in.tools.begin(), in.tools.end(),
                                    [](const Tool& t) { return std::isfinite(engagementLimit(t)); });
-  if (limited) {
-    progress.stage(0.92, "growing the cut within the engagement limits");
-    HeightField stock = stockOf(in.tools, material, pocket.region);
-    out.plunges = growWithinLimits(pocket.region, depths, out.plunges, stock, engagementOptions(in, tools, material, progress));
+  auto post = [&](const std::vector<CutDisk>& cut) {
+    out.plunges.clear();
+    progress.stage(0.9, "ordering the plunges");
+    sequence(in, tools, cut, out, progress);
+    if (limited) {
+      progress.stage(0.92, "growing the cut within the engagement limits");
+      HeightField stock = stockOf(in.tools, material, pocket.region);
+      out.plunges = growWithinLimits(pocket.region, depths, out.plunges, stock, engagementOptions(in, tools, material, progress));
+    }
+    return clearHolders(splitIntoLevels(out.plunges, motion, out.stats), tools, material, mount);
+  };
+  HolderClearance holders = post(disks);
+  // The tool that reaches: where holders stopped plunges, the tools they did
+  // not stop cover what is left, and all is posted again.
+  if (!holders.stops.empty()) {
+    const std::vector<CutDisk> reach = reachWhereHeld(in, tools, pocket.region, depths, holders);
+    if (!reach.empty()) {
+      disks.insert(disks.end(), reach.begin(), reach.end());
+      holders = post(disks);
+    }
   }
-  MotionOptions motion = motionOptions(in, tools, material, progress);
-  out.plunges = splitIntoLevels(out.plunges, motion, out.stats);
-  // Holders and shanks kept clear of the part and the standing material, in
-  // the posted order: plunges stop where they clear (holder.hpp).
-  const HolderSettings mount{in.motion.holderClearance, dist(pocket.region.minCorner(), pocket.region.maxCorner())};
-  HolderClearance holders = clearHolders(out.plunges, tools, material, mount);
   out.plunges = std::move(holders.plunges);
+  const HolderLimits held = holderLimits(stillHeld(pocket, tools, holders.stops, out.plunges), tools, mount.clearance);
   // Measured on the final plunges (the rest step and the limits add to the
   // covering's), on another thread with its own floor while the motion is
   // planned: the moves between the plunges change neither where they cut nor
@@ -702,8 +793,9 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   wallBandAboveStats(in, tools, out);
   out.warnings.insert(out.warnings.end(), motionWarnings.begin(), motionWarnings.end());
   out.broken.insert(out.broken.end(), motionBroken.begin(), motionBroken.end());
-  for (size_t k = 0; k < holders.broken.size(); ++k) sayBroken(out, holders.said[k], holders.broken[k]);
-  reportFloorStock(in, measured.stock, out, held);
+  for (size_t k = 0; k < held.broken.size(); ++k) sayBroken(out, held.said[k], held.broken[k]);
+  for (std::string& w : uncheckedHolders(out.plunges, tools, in.topZ)) out.warnings.push_back(std::move(w));
+  reportFloorStock(in, measured.stock, out, finalDepthHeld);
   countPlunges(in, out);
   depthFallbacks(depths, out);
   out.stats.planningSeconds = secondsSince(t0);

@@ -68,6 +68,19 @@ class Raster {
       if (test::bruteInside(loops_, centre(i, j))) z_[idx(i, j)] = std::min(z_[idx(i, j)], z);
     });
   }
+  // The highest material left in the pocket farther than d from its walls
+  // and than `corner` from the boundary's corners (a round tool leaves them).
+  double highestBeyond(double d, double corner) const {
+    double best = -INFINITY;
+    for (int j = 0; j < ny_; ++j)
+      for (int i = 0; i < nx_; ++i) {
+        const Vec2 c = centre(i, j);
+        if (!test::bruteInside(loops_, c) || test::bruteWallDistance(loops_, c) < d) continue;
+        if (std::any_of(loops_[0].begin(), loops_[0].end(), [&](Vec2 v) { return dist(v, c) < corner; })) continue;
+        best = std::max(best, z_[idx(i, j)]);
+      }
+    return best;
+  }
   // The highest material (the part included) within reach of the segment.
   double highest(Vec2 a, Vec2 b, double reach) const {
     double best = -INFINITY;
@@ -111,6 +124,7 @@ struct Collision {
   int count = 0;
   double worst = 0.0;  // mm into the clearance
   std::string first;
+  double left = 0.0;  // the highest material left beyond the wall band
 };
 
 // Replays the posted moves: each plunge's feed down, its lead-out, the rapid
@@ -147,6 +161,8 @@ Collision replay(const PlanInput& in, const Plan& p, double h = 0.25) {
     if (i + 1 < p.plunges.size() && p.plunges[i + 1].toolId == q.toolId)
       check(t, end, {p.plunges[i + 1].x, p.plunges[i + 1].y}, q.retractZ, "move after " + std::to_string(i));
   }
+  const double rMin = 0.5 * in.tools.back().diameter + in.radialAllowance;
+  out.left = stock.highestBeyond(in.radialAllowance + in.covering.maxWallStock + 2 * h, 1.5 * rMin);
   return out;
 }
 
@@ -197,6 +213,35 @@ TEST(Holder, DeepPocketNoPostedMoveMeetsThePartOrTheStock) {
       EXPECT_GT(q.z, in.floor.surface.z + in.floorAllowance + 1e-6);
     }
   }
+}
+
+// The second tool: a slim 12 mm plunger held 95 mm out. Where the
+// holder stops the 20 mm one (beside the walls and the island), the slim one
+// goes to the floor; nothing is left to say, and no holder meets the stock.
+TEST(Holder, TheToolThatReachesGoesDeep) {
+  PlanInput in = deepPocket();
+  Tool slim{12, 2, 300};
+  slim.fluteLength = 50.0;
+  slim.stickOut = 95.0;
+  slim.holderDiameter = 32.0;
+  in.tools.push_back(slim);
+  const Plan p = plan(in);
+  const Collision c = replay(in, p);
+  EXPECT_EQ(c.count, 0) << c.first << ", " << c.worst << " mm into the clearance";
+  // The replay's own floor: every cell beyond the wall band is cut to the floor.
+  EXPECT_LE(c.left, in.floor.surface.z + in.floorAllowance + 1e-6);
+  EXPECT_TRUE(std::none_of(p.broken.begin(), p.broken.end(), [](const BrokenLimit& x) { return x.limit == "stick_out"; }));
+  // The slim tool reaches the floor beside the walls, where the holder stops the other.
+  int deepAtWalls = 0;
+  for (const Plunge& q : p.plunges)
+    if (q.toolId == 2 && q.z < in.floor.surface.z + in.floorAllowance + 1e-6 &&
+        test::bruteWallDistance({in.boundary, in.islands[0]}, {q.x, q.y}) < 20.0 + 1.0)
+      ++deepAtWalls;
+  EXPECT_GT(deepAtWalls, 20);
+  // Without it, the same replay finds the floor left where the holder stopped.
+  const PlanInput alone = deepPocket();
+  const Collision a = replay(alone, plan(alone));
+  EXPECT_GT(a.left, in.floor.surface.z + 5.0);
 }
 
 // Short flutes and a holder just above them: three levels, the moves between
