@@ -17,8 +17,9 @@ def generate(plunges, clearance_height, safe_height, canned_cycle=False, peck_de
     to the approach height (the safe height for tuples), feeds to z (a pecked
     hole: to each peck, rapid up to the approach height to clear the chips,
     rapid back to rapid_clearance above the peck; then dwell seconds at the
-    bottom), feeds up to lead_out_z if given, feeds along the lead-out and
-    rapids up to the retract height (the feed rates are the tool controller's,
+    bottom), feeds up to lead_out_z if given, feeds along the lead-out,
+    rapids up to the retract height and through `via` at that height (the
+    way around standing material to the next plunge; the feed rates are the tool controller's,
     set afterwards by PathFeedRate). With canned_cycle, each plunge is a G81,
     or a G83 pecking by peck_depth (a plunge dict: where the plan pecks it; a
     tuple: every one when peck_depth > 0), with the retract plane at the safe
@@ -80,6 +81,8 @@ def generate(plunges, clearance_height, safe_height, canned_cycle=False, peck_de
             # The last plunge of the operation leaves at the safe height.
             at = safe_height if i == len(moves) - 1 else max(m["retract_z"], m["z"])
             cmds.append(Path.Command("G0", {"Z": at}))
+            if i < len(moves) - 1:  # the way around standing material, at that height
+                cmds.extend(Path.Command("G0", {"X": v[0], "Y": v[1]}) for v in m["via"])
     cmds.append(Path.Command("G0", {"Z": clearance_height}))
     return cmds
 
@@ -94,7 +97,8 @@ def _move(p, safe_height, peck_depth):
                 "retract_z": min(p.get("retract_z", safe_height), safe_height),
                 "lead_out": tuple(lead) if lead is not None else None,
                 "lead_out_z": p.get("lead_out_z") if lead is not None else None,
-                "pecks": list(p.get("pecks", [])), "pecked": bool(p.get("pecks"))}
+                "pecks": list(p.get("pecks", [])), "pecked": bool(p.get("pecks")),
+                "via": [tuple(v) for v in p.get("via", [])]}
     x, y, z = p
     return {"x": x, "y": y, "z": z, "approach_z": safe_height, "retract_z": safe_height, "lead_out": None,
-            "lead_out_z": None, "pecks": [], "pecked": peck_depth > 0}
+            "lead_out_z": None, "pecks": [], "pecked": peck_depth > 0, "via": []}

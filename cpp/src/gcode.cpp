@@ -45,6 +45,7 @@ std::string planToGcode(const PlanInput& input, const Plan& plan) {
     if (p.leadOutZ) s << "G1 Z" << *p.leadOutZ << "\n";
     if (p.leadOut) s << "G1 X" << p.leadOut->x << " Y" << p.leadOut->y << "\n";
     s << "G0 Z" << p.retractZ << "\n";
+    for (Vec2 v : p.via) s << "G0 X" << v.x << " Y" << v.y << "\n";
   }
   if (current >= 0) s << "M5\n";
   s << "M30\n";

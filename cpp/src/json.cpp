@@ -453,6 +453,11 @@ json planToValue(const Plan& plan) {
               {"start_hole", p.startHole}};
     if (p.leadOut) o["lead_out"] = {p.leadOut->x, p.leadOut->y};
     if (p.leadOutZ) o["lead_out_z"] = *p.leadOutZ;
+    if (!p.via.empty()) {
+      nlohmann::json via = nlohmann::json::array();
+      for (Vec2 v : p.via) via.push_back({v.x, v.y});
+      o["via"] = via;
+    }
     if (!p.pecks.empty()) o["pecks"] = p.pecks;
     if (p.holderLimited) o["holder_limited"] = true;
     out["plunges"].push_back(o);

@@ -139,8 +139,17 @@ class MotionPass {
   void run(Plan& plan);
 
  private:
+  // A rapid's way to the next plunge: its height and the points between.
+  struct Way {
+    double z;
+    std::vector<Vec2> via;
+  };
+  // What a way around the wall band keeps from it (mm beyond the band).
+  static constexpr double kBandMargin = 0.2;
   double measure(Plunge& p, const Tool& t);
   void retractBefore(Plan& plan, size_t i);
+  double heightAlong(const Plunge& q, const Plunge& p, const std::vector<Vec2>& path) const;
+  Way wayTo(const Plunge& q, const Plunge& p, Vec2 from) const;
   void leadOut(Plan& plan, size_t i, const Tool& t);
   void report(Plan& plan);
 
@@ -205,19 +214,87 @@ double MotionPass::measure(Plunge& p, const Tool& t) {
   return top;
 }
 
-// The retract of the plunge before plunge i: as high as the stock along the move.
+// The retract of the plunge before plunge i: as high as the stock along the
+// move needs, straight or around (wayTo).
 void MotionPass::retractBefore(Plan& plan, size_t i) {
   const Plunge& p = plan.plunges[i];
   Plunge& q = plan.plunges[i - 1];
   const Vec2 c{p.x, p.y};
   const Vec2 from = q.leadOut ? *q.leadOut : Vec2{q.x, q.y};
-  plan.stats.travelLength += dist(from, c);
   q.retractZ = in_.safeZ;
-  if (in_.settings.stockAwareHeights && q.toolId == p.toolId)
-    q.retractZ = std::min(in_.safeZ, std::max({touched_.highestAlong(from, c, 0.5 * q.diameter) + in_.settings.rapidClearance,
-                                               p.approachZ, q.z + in_.settings.rapidClearance,
-                                               // its holder and shank over the stock along the way
-                                               holderFloor(in_.tools.byId(q.toolId), touched_, from, c, mount_)}));
+  q.via.clear();
+  if (in_.settings.stockAwareHeights && q.toolId == p.toolId) {
+    const Way w = wayTo(q, p, from);
+    q.retractZ = w.z;
+    q.via = w.via;
+  }
+  double length = 0.0;
+  Vec2 at = from;
+  for (Vec2 v : q.via) {
+    length += dist(at, v);
+    at = v;
+  }
+  plan.stats.travelLength += length + dist(at, c);
+}
+
+// The height a rapid along `path` needs: rapid_clearance over the stock its
+// tool sweeps, its holder and shank clear, no lower than the plunges' own.
+double MotionPass::heightAlong(const Plunge& q, const Plunge& p, const std::vector<Vec2>& path) const {
+  const Tool& t = in_.tools.byId(q.toolId);
+  double z = std::max(p.approachZ, q.z + in_.settings.rapidClearance);
+  for (size_t k = 0; k + 1 < path.size(); ++k)
+    z = std::max({z, touched_.highestAlong(path[k], path[k + 1], 0.5 * q.diameter) + in_.settings.rapidClearance,
+                  holderFloor(t, touched_, path[k], path[k + 1], mount_)});
+  return std::min(in_.safeZ, z);
+}
+
+// The way from plunge q (its lead-out's end) to plunge p. Straight, or around:
+// each end pushed away from its nearest wall until the swept tool clears the
+// wall band the covering may leave standing (the cusps between plunges along
+// a wall, up to the radial allowance and max_wall_stock from it), when
+// climbing less makes up for the longer way (up and down at the retract rate,
+// across at the rapid rate).
+MotionPass::Way MotionPass::wayTo(const Plunge& q, const Plunge& p, Vec2 from) const {
+  const Vec2 to{p.x, p.y};
+  Way best{heightAlong(q, p, {from, to}), {}};
+  const double low = std::max(p.approachZ, q.z + in_.settings.rapidClearance);
+  if (best.z <= low + 1e-9) return best;
+  const TimeModel& m = in_.settings.timeModel;
+  auto minutes = [&](double z, const std::vector<Vec2>& path) {
+    double length = 0.0;
+    for (size_t k = 0; k + 1 < path.size(); ++k) length += dist(path[k], path[k + 1]);
+    return 2.0 * z / m.retractRate + length / m.rapidRate;
+  };
+  double bestMinutes = minutes(best.z, {from, to});
+  const double r = 0.5 * q.diameter;
+  const double band = in_.radialAllowance + in_.maxWallStock + kBandMargin;
+  // A point pushed away from its nearest wall (within reach of the band) by
+  // `extra` beyond where its swept disk clears the band.
+  // (Again from the point pushed, for a corner's second wall.)
+  auto pushed = [&](Vec2 x, double extra) {
+    for (int k = 0; k < 3; ++k) {
+      Vec2 wall;
+      double d = 0.0;
+      if (!region_.nearestWallPoint(x, r + band + extra, wall, d) || d <= 1e-9 || d >= r + band - 1e-9) break;
+      x = x + (x - wall) * ((r + band - d + (k == 0 ? extra : 0.0)) / d);
+    }
+    return x;
+  };
+  for (const double extra : {0.0, 0.5 * r}) {
+    const Vec2 a = pushed(from, extra), b = pushed(to, extra);
+    std::vector<Vec2> path{from};
+    if (dist(a, from) > 1e-6) path.push_back(a);
+    if (dist(b, to) > 1e-6) path.push_back(b);
+    path.push_back(to);
+    if (path.size() == 2) continue;
+    const double z = heightAlong(q, p, path);
+    const double t = minutes(z, path);
+    if (z < best.z - 1e-9 && t < bestMinutes - 1e-12) {
+      best = {z, std::vector<Vec2>(path.begin() + 1, path.end() - 1)};
+      bestMinutes = t;
+    }
+  }
+  return best;
 }
 
 // Plunge i's lead-out (lead_out.hpp), cut into the stock the next plunges meet.
@@ -288,7 +365,12 @@ double motionMinutes(const Plan& plan, const MotionOptions& in, bool atSafeHeigh
     if (i == 0 || plan.plunges[i - 1].toolId != p.toolId) ++changes;
     if (i > 0) {
       const Plunge& q = plan.plunges[i - 1];
-      minutes += dist(q.leadOut ? *q.leadOut : Vec2{q.x, q.y}, {p.x, p.y}) / m.rapidRate;
+      Vec2 at = q.leadOut ? *q.leadOut : Vec2{q.x, q.y};
+      for (Vec2 v : atSafeHeight ? std::vector<Vec2>{} : q.via) {
+        minutes += dist(at, v) / m.rapidRate;
+        at = v;
+      }
+      minutes += dist(at, {p.x, p.y}) / m.rapidRate;
     }
     const double approach = atSafeHeight ? in.safeZ : p.approachZ;
     const double retract = atSafeHeight ? in.safeZ : p.retractZ;

@@ -34,6 +34,7 @@ struct MotionOptions {
   double safeZ = 5.0;
   double radialAllowance = 0.0;
   double floorAllowance = 0.0;
+  double maxWallStock = 0.0;  // the wall band the covering may leave (rapids go around it)
   MotionSettings settings;  // lead-outs, heights, pecks, the time model (PlanInput::motion)
   Progress progress;  // ticked per plunge (it may cancel)
 };

@@ -650,6 +650,7 @@ MotionOptions motionOptions(const PlanInput& in, const ToolTable& tools, const M
   o.safeZ = in.safeZ;
   o.radialAllowance = in.radialAllowance;
   o.floorAllowance = in.floorAllowance;
+  o.maxWallStock = in.covering.maxWallStock;
   o.settings = in.motion;
   o.progress = progress;
   return o;

@@ -221,7 +221,11 @@ class SvgPicture {
         if (to <= from) continue;
         s_ << "<polyline fill=\"none\" stroke=\"" << kPathPalette[colour_[t.toolId] % 8] << "\" stroke-width=\""
            << 1.5 * sw_ << "\" stroke-opacity=\"" << 0.25 + 0.75 * (k + 1) / parts << "\" points=\"";
-        for (size_t i = from; i <= to; ++i) s_ << mine[i]->x << "," << -mine[i]->y << " ";
+        for (size_t i = from; i <= to; ++i) {
+          s_ << mine[i]->x << "," << -mine[i]->y << " ";
+          if (i < to)  // the way around the wall band to the next
+            for (Vec2 v : mine[i]->via) s_ << v.x << "," << -v.y << " ";
+        }
         s_ << "\"/>\n";
       }
       if (!mine.empty())  // where the tool starts: a ring round its first plunge

@@ -5,7 +5,9 @@ G-code (a table for docs/benchmarks.md).
 Run headless inside FreeCAD, from the repository after the build (docs/cli.md: the
 planner module comes from build/cpp, the addon from the source tree):
 
-    freecadcmd tests/bench/bench_vs_adaptive.py
+    XDG_DATA_HOME=$(mktemp -d) XDG_CONFIG_HOME=$(mktemp -d) freecadcmd tests/bench/bench_vs_adaptive.py
+
+(a profile of its own: an installed copy of the addon would be loaded first).
 
 PLUNGE_BENCH_POCKETS="2,3" runs only those pockets (numbers below),
 PLUNGE_BENCH_CELL the height field's cell (mm, default 0.25),
@@ -97,6 +99,13 @@ import Part  # noqa: E402
 import example_part  # noqa: E402
 from freecad_plugin import companions, compat  # noqa: E402
 from gcode_replay import Stock, part_surface, read_program, replay, tools_of  # noqa: E402
+
+# An installed copy of the addon (the README's install) is loaded by FreeCAD
+# before this script runs, with its own planner: the bench would time that.
+if not os.path.abspath(companions.__file__).startswith(ROOT + os.sep):
+    sys.exit("the addon comes from %s, not this tree: run with a profile of its own, e.g. "
+             "XDG_DATA_HOME=$(mktemp -d) XDG_CONFIG_HOME=$(mktemp -d) freecadcmd %s"
+             % (os.path.dirname(os.path.dirname(companions.__file__)), os.path.relpath(__file__, ROOT)))
 
 V = FreeCAD.Vector
 PLUNGERS = (20.0, 12.0, 6.0)

@@ -36,7 +36,9 @@ static int parsesBack(const PlanInput& in, const Plan& p) {
   double x = NAN, y = NAN, z = NAN;
   int tool = -1;
   std::vector<Plunge> seen;
-  std::vector<double> rapidHeights;  // z of each rapid across, before each plunge
+  std::vector<double> rapidHeights;  // z of the rapids across, before each plunge
+  std::vector<Vec2> across;          // where the rapids across since the last plunge went
+  std::vector<double> acrossZ;
   std::vector<int> changes;
   bool inHole = false;  // since the last feed down, no move sideways: a feed down goes on with the hole
   double dwell = 0;
@@ -55,7 +57,10 @@ static int parsesBack(const PlanInput& in, const Plan& p) {
       changes.push_back(tool);
     }
     const bool rapid = !codes.empty() && codes[0] == "G0", feed = !codes.empty() && codes[0] == "G1";
-    if (rapid && (v.count('X') || v.count('Y'))) rapidHeights.push_back(z);
+    if (rapid && (v.count('X') || v.count('Y'))) {
+      across.push_back({v.count('X') ? v['X'] : x, v.count('Y') ? v['Y'] : y});
+      acrossZ.push_back(z);
+    }
     if (!codes.empty() && codes[0] == "G4") dwell = v['P'];
     if ((rapid || feed) && (v.count('X') || v.count('Y'))) inHole = false;
     if (rapid && v.count('Z') && inHole && !seen.empty() && v['Z'] < z) {
@@ -78,6 +83,12 @@ static int parsesBack(const PlanInput& in, const Plan& p) {
       q.toolId = tool;
       q.approachZ = z;  // where the feed starts
       q.z = v['Z'];
+      // The rapids across before it: at one height, through the way's points.
+      if (!acrossZ.empty()) rapidHeights.push_back(acrossZ.front());
+      for (double h : acrossZ) EXPECT_NEAR(h, acrossZ.front(), 1e-9) << "a way across at one height";
+      if (!seen.empty() && !across.empty()) seen.back().via.assign(across.begin(), across.end() - 1);
+      across.clear();
+      acrossZ.clear();
       seen.push_back(q);
       inHole = true;
     } else if (feed) {
@@ -119,6 +130,9 @@ static int parsesBack(const PlanInput& in, const Plan& p) {
       EXPECT_GT(*q.leadOutZ, q.z);
       EXPECT_LE(*q.leadOutZ, q.z + in.motion.leadOut + 1e-9);
     }
+    EXPECT_EQ(seen[i].via.size(), q.via.size()) << i;
+    for (size_t k = 0; k < std::min(seen[i].via.size(), q.via.size()); ++k)
+      EXPECT_NEAR(dist(seen[i].via[k], q.via[k]), 0.0, 1e-3) << i;
     // Across at the previous plunge's retract height (safe_z after a tool change).
     const bool first = i == 0 || p.plunges[i - 1].toolId != q.toolId;
     EXPECT_NEAR(rapidHeights[i], first ? in.safeZ : p.plunges[i - 1].retractZ, 1e-4);

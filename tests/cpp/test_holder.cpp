@@ -158,8 +158,23 @@ Collision replay(const PlanInput& in, const Plan& p, double h = 0.25) {
       stock.cut(at, *q.leadOut, 0.5 * q.diameter, z);
       end = *q.leadOut;
     }
-    if (i + 1 < p.plunges.size() && p.plunges[i + 1].toolId == q.toolId)
-      check(t, end, {p.plunges[i + 1].x, p.plunges[i + 1].y}, q.retractZ, "move after " + std::to_string(i));
+    if (i + 1 < p.plunges.size() && p.plunges[i + 1].toolId == q.toolId) {
+      // The rapid across, the way around the wall band included: the holder
+      // keeps the clearance, the flutes pass over the material.
+      auto across = [&](Vec2 a, Vec2 b) {
+        const std::string what = "move after " + std::to_string(i);
+        check(t, a, b, q.retractZ, what);
+        if (stock.highest(a, b, 0.5 * q.diameter - slack) > q.retractZ + 1e-6) {
+          if (out.count++ == 0) out.first = what + " (the flutes)";
+          out.worst = std::max(out.worst, stock.highest(a, b, 0.5 * q.diameter - slack) - q.retractZ);
+        }
+      };
+      for (Vec2 v : q.via) {
+        across(end, v);
+        end = v;
+      }
+      across(end, {p.plunges[i + 1].x, p.plunges[i + 1].y});
+    }
   }
   const double rMin = 0.5 * in.tools.back().diameter + in.radialAllowance;
   out.left = stock.highestBeyond(in.radialAllowance + in.covering.maxWallStock + 2 * h, 1.5 * rMin);
@@ -242,6 +257,32 @@ TEST(Holder, TheToolThatReachesGoesDeep) {
   const PlanInput alone = deepPocket();
   const Collision a = replay(alone, plan(alone));
   EXPECT_GT(a.left, in.floor.surface.z + 5.0);
+}
+
+// Levels that stay low: in a 120 x 80 x 60 mm pocket cut in two levels, the
+// moves between the second level's plunges go around the cusps the first left
+// standing along the walls (the wall band) instead of climbing over them, and
+// neither the flutes nor the holder meet anything on the way.
+TEST(Holder, LevelsStayLowAroundTheWallBand) {
+  PlanInput in = deepPocket(70.0);
+  in.boundary = {{0, 0}, {120, 0}, {120, 80}, {0, 80}};
+  in.islands.clear();
+  in.floor.surface.z = -60.0;
+  const Plan p = plan(in);
+  ASSERT_EQ(p.stats.levels, 2);
+  const Collision c = replay(in, p);
+  EXPECT_EQ(c.count, 0) << c.first << ", " << c.worst << " mm into the clearance";
+  int moves = 0, high = 0, around = 0;
+  for (size_t i = 0; i + 1 < p.plunges.size(); ++i) {
+    const Plunge& q = p.plunges[i];
+    if (q.level != 1 || p.plunges[i + 1].level != 1) continue;
+    ++moves;
+    high += q.retractZ > in.topZ;
+    around += !q.via.empty();
+  }
+  EXPECT_GT(moves, 30);
+  EXPECT_LE(high, 2) << "of " << moves << " moves between the second level's plunges";
+  EXPECT_GT(around, 10);
 }
 
 // Short flutes and a holder just above them: three levels, the moves between

@@ -49,7 +49,11 @@ TEST(Motion, HeightsAndLeadOutsKeepClearOfTheStock) {
     }
     if (i + 1 < p.plunges.size()) {
       const Plunge& n = p.plunges[i + 1];
-      const Vec2 from = q.leadOut ? *q.leadOut : Vec2{q.x, q.y};
+      Vec2 from = q.leadOut ? *q.leadOut : Vec2{q.x, q.y};
+      for (Vec2 v : q.via) {  // the way around
+        EXPECT_GE(q.retractZ, f.highestAlong(from, v, 0.5 * q.diameter - 0.05)) << i;
+        from = v;
+      }
       EXPECT_GE(q.retractZ, f.highestAlong(from, {n.x, n.y}, 0.5 * q.diameter - 0.05)) << i;
       EXPECT_GE(q.retractZ, n.approachZ);
     }

@@ -43,7 +43,12 @@ TEST(Selection, TimeModelAddsUpThePlan) {
       if (q.leadOut) m += dist(*q.leadOut, {q.x, q.y}) / feed[q.toolId];
       if (i) {
         const Plunge& b = p.plunges[i - 1];
-        m += dist(b.leadOut ? *b.leadOut : Vec2{b.x, b.y}, {q.x, q.y}) / 8000.0;
+        Vec2 at = b.leadOut ? *b.leadOut : Vec2{b.x, b.y};
+        for (Vec2 v : atSafe ? std::vector<Vec2>{} : b.via) {  // around the wall band
+          m += dist(at, v) / 8000.0;
+          at = v;
+        }
+        m += dist(at, {q.x, q.y}) / 8000.0;
       }
       z = retract;
     }

@@ -38,6 +38,17 @@ def test_plan_moves_with_lead_outs():
     assert feeds == [(None, None, -5), (1.5, 2, -5), (None, None, -6), (None, None, -5.6), (3, 4.5, -5.6)]
 
 
+def test_the_way_around_runs_at_the_retract_height():
+    """A plunge's via points: after its retract, rapids through them at that
+    height, then on to the next plunge; the last plunge's are not posted."""
+    plunges = [{"x": 1, "y": 2, "z": -50, "approach_z": -39, "retract_z": -39, "via": [[2, 2.5], [7, 2.5]]},
+               {"x": 8, "y": 2, "z": -50, "approach_z": -39, "retract_z": 5, "via": [[9, 9]]}]
+    cmds = generator.generate(plunges, clearance_height=10, safe_height=5)
+    across = [(c.Parameters.get("X"), c.Parameters.get("Y"), z) for c, _, z in heights(cmds)
+              if c.Name == "G0" and ("X" in c.Parameters or "Y" in c.Parameters)]
+    assert across == [(1, 2, 10), (2, 2.5, -39), (7, 2.5, -39), (8, 2, -39)]
+
+
 def test_pecked_holes_clear_their_chips():
     """A pecked plunge: down to each peck, up out of the hole (its approach
     height), back to the clearance above the peck, on to z; a dwell at the

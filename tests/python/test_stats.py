@@ -105,9 +105,10 @@ def test_counts_are_the_plunges(planned):
     assert s["levels"] == 1 + max(p.get("level", 0) for p in plunges)
     assert s["lead_outs"] + s["no_lead_out_material"] + s["no_lead_out_walls"] == len(plunges)
     assert s["boundary_tolerance"] == 0.0  # boundaries of a few hundred vertices plan as given
-    travel = sum(np.hypot(b["x"] - (a["lead_out"][0] if "lead_out" in a else a["x"]),
-                          b["y"] - (a["lead_out"][1] if "lead_out" in a else a["y"]))
-                 for a, b in zip(plunges, plunges[1:]))
+    # From each lead-out's end (or the plunge) through the way's points to the next plunge.
+    ways = [[a.get("lead_out", (a["x"], a["y"]))] + a.get("via", []) + [(b["x"], b["y"])]
+            for a, b in zip(plunges, plunges[1:])]
+    travel = sum(np.hypot(q[0] - p[0], q[1] - p[1]) for w in ways for p, q in zip(w, w[1:]))
     assert s["travel_length"] == pytest.approx(travel, rel=1e-9, abs=1e-6)
 
 
@@ -205,6 +206,9 @@ def test_times_are_the_plans_moves(planned):
             if i > 0:
                 q = plunges[i - 1]
                 a = q.get("lead_out", (q["x"], q["y"]))
+                for v in [] if at_safe else q.get("via", []):  # around the wall band
+                    total += math.hypot(v[0] - a[0], v[1] - a[1]) / rapid
+                    a = v
                 total += math.hypot(p["x"] - a[0], p["y"] - a[1]) / rapid
             approach = safe if at_safe else p["approach_z"]
             up = safe if at_safe else p["retract_z"]

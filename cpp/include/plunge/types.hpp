@@ -243,13 +243,17 @@ struct Plunge {
   double z = 0.0;
   // How the machine gets there and away (motion.hpp): rapid down to approachZ,
   // feed to z, feed to leadOut (if any), rapid up to retractZ and on to the next
-  // plunge at that height. A plunge deeper than those around it (a hollow of a
+  // plunge at that height (through `via`). A plunge deeper than those around it (a hollow of a
   // sculptured floor) first feeds up to leadOutZ, where its way out clears their
   // steps and the floor.
   double approachZ = 0.0;
   double retractZ = 0.0;
   std::optional<Vec2> leadOut;
   std::optional<double> leadOutZ;  // above z, or none: the lead-out is at z
+  // The way to the next plunge at retractZ, when going around standing
+  // material (a wall's cusps) is quicker than climbing over it: the points
+  // between, in order (none: straight).
+  std::vector<Vec2> via;
   bool startHole = false;   // a centre-cutting hole for a non-centre-cutting plunger
   bool start = false;       // into solid (centre-cutting) or a start hole: no engagement limit
   double engagement = 0.0;  // radial engagement met, mm (engagement.hpp)
