@@ -47,3 +47,44 @@ def test_a_deep_pocket_keeps_the_holder_clear_at_every_posted_move(doc):
     program = read_program(compat.post_job(job, "linuxcnc", "--no-show-editor"))
     hits, worst, _ = holder_hits(program, Stock(job.Stock.Shape.BoundBox, 0.5), tools_of(job), holders, 1.0)
     assert hits > 0 and worst > 5.0
+
+
+def mount(bit, stick_out, holder):
+    """What a user adds to a tool bit in the property editor (Add Property):
+    its stick-out and its holder's diameter, as lengths."""
+    for name, value in (("StickOut", stick_out), ("HolderDiameter", holder)):
+        if not hasattr(bit, name):
+            bit.addProperty("App::PropertyLength", name, "Attributes", "as mounted")
+        setattr(bit, name, value)
+
+
+@pytest.mark.bundle
+def test_the_bits_own_holders_and_the_slim_tool_that_reaches(doc):
+    """The holders come from the bits (no operation property set): the 20 mm
+    plunger 60 mm out in a 40 mm holder stops beside the 70 mm walls, and the
+    12 mm one, 95 mm out in a 32 mm holder, goes to the floor there. Both
+    replayed as posted: no holder within its clearance."""
+    job = parts.make_job(doc, deep_part())
+    face = parts.floor_face_name(job.Model.Group[0].Shape, False)
+    op, tcs = parts.add_plunge_rough(job, face, (20, 12), RadialAllowance=0.3, FloorAllowance=0.2,
+                                     AutoSelectTools=False)
+    mount(tcs[0].Tool, 60.0, 40.0)
+    mount(tcs[1].Tool, 95.0, 32.0)
+    op.recompute()
+    doc.recompute()
+    plan = PlungeRough.plan_of(op)
+    assert plan is not None, op.Summary
+    assert "held 60.0 mm from its tip in a 40.0 mm holder" in op.Summary, op.Summary
+    assert "held 95.0 mm from its tip in a 32.0 mm holder" in op.Summary, op.Summary
+    big, slim = int(tcs[0].ToolNumber), int(tcs[1].ToolNumber)
+    assert any(p["tool_id"] == big and p.get("holder_limited") for p in plan["plunges"])
+    # Beside the walls, where the 20 mm holder stops, the slim tool reaches the floor.
+    floor = 10.0 + 0.2
+    deep_at_walls = [p for p in plan["plunges"] if p["tool_id"] == slim and p["z"] < floor + 1e-6
+                     and min(p["x"] - 20, 170 - p["x"], p["y"] - 20, 110 - p["y"]) < 21]
+    assert len(deep_at_walls) > 20
+    assert not [b for b in plan.get("broken_limits", []) if b["limit"] == "stick_out"], plan["broken_limits"]
+    program = read_program(compat.post_job(job, "linuxcnc", "--no-show-editor"))
+    holders = {big: [(60.0, 20.0)], slim: [(95.0, 16.0)]}
+    hits, worst, first = holder_hits(program, Stock(job.Stock.Shape.BoundBox, 0.5), tools_of(job), holders, 1.0)
+    assert hits == 0, "%d moves bring a holder %.2f mm into its clearance, the first %s" % (hits, worst, first)
