@@ -77,6 +77,9 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             "MaxWallStock": SpinBox(self.form.maxWallStock, obj, "MaxWallStock"),
             "MaxFloorStock": SpinBox(self.form.maxFloorStock, obj, "MaxFloorStock"),
             "LeadOut": SpinBox(self.form.leadOut, obj, "LeadOut"),
+            "StickOut": SpinBox(self.form.stickOut, obj, "StickOut"),
+            "HolderDiameter": SpinBox(self.form.holderDiameter, obj, "HolderDiameter"),
+            "HolderClearance": SpinBox(self.form.holderClearance, obj, "HolderClearance"),
         }
         self.obj = obj
         self.picture = None
@@ -223,6 +226,9 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
             self.form.maxWallStock.editingFinished,
             self.form.maxFloorStock.editingFinished,
             self.form.leadOut.editingFinished,
+            self.form.stickOut.editingFinished,
+            self.form.holderDiameter.editingFinished,
+            self.form.holderClearance.editingFinished,
             self.form.maxEngagement.editingFinished,
             self.form.minEngagement.editingFinished,
             self.form.stockAwareHeights.stateChanged,

@@ -603,6 +603,10 @@ def new_job():
     result["panel_icon"] = not panel.featurePages[-1].getIcon(op) is None
     page.form.radialAllowance.setProperty("rawValue", 0.5)
     page.form.radialAllowance.editingFinished.emit()
+    # The holder as the machinist measures it on the machine: far enough out
+    # that the demo's 25 mm pocket plans as before.
+    page.form.stickOut.setProperty("rawValue", 120.0)
+    page.form.stickOut.editingFinished.emit()
     result["base"] = [sub for _, subs in op.Base for sub in subs]
     # At FreeCAD's default task panel width every line of the page reads whole:
     # the panel's scroll area needs no horizontal scroll bar.
@@ -621,6 +625,7 @@ def new_job():
                             for o in job.Operations.Group]
     result["summary"] = op.Summary
     result["radial"] = op.RadialAllowance.Value
+    result["stick_out"] = op.StickOut.Value
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.ActiveDocument.scrollToTreeItem(op.ViewObject)
     FreeCADGui.Selection.addSelection(op)

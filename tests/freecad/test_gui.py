@@ -190,6 +190,7 @@ def test_new_operation_from_the_toolbar(result):
     assert all(n > 0 for _, _, n in result["operations"])  # every tool plunges
     assert all("(" not in label for label, _, _ in result["operations"])
     assert result["radial"] == 0.5  # the panel's value reached the op
+    assert result["stick_out"] == 120.0  # so did the holder's stick-out
     width, needed, scrolls = result["panel_width"]
     assert needed <= width and scrolls is False, result["panel_width"]  # nothing cut off on the right
     assert result["strategies"] == ["Packing", "Grid (honeycomb)", "Grid (square)"]
