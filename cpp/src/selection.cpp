@@ -390,15 +390,25 @@ class ToolSetSearch {
           sel_.sets[order[k]].weighted <= sel_.sets[order.front()].weighted * (1.0 + kEstimateMargin))
         std::rotate(order.begin(), order.begin() + k, order.begin() + k + 1);
     for (size_t k : order) {
-      ToolSetResult& r = sel_.sets[k];
       try {
-        Plan p = stages_.plan(inputOf(r.diameters), std::move(placements_[k]), progress_.sub(0.2, 1.0));
-        r.evaluated = true;
-        r.estimate = r.minutes;
-        r.plunges = p.stats.plungeCount;
-        r.coverage = p.stats.coverage;
-        r.minutes = p.stats.estimatedMinutes;
-        r.weighted = weighted(r.minutes, r.diameters.size());
+        Plan p = planSet(k, progress_.sub(0.2, 0.8));
+        // Holders: the estimates cannot see where a holder stops a plunger
+        // (that needs the posted order). Where the best set's plan leaves the
+        // floor to one, the library as given (a slim plunger held far out
+        // among it) is planned too, and kept when fewer places are left.
+        const int held = heldPlaces(p);
+        const auto lib = std::find_if(order.begin(), order.end(),
+                                      [&](size_t j) { return sel_.sets[j].diameters == library_; });
+        if (held > 0 && lib != order.end() && *lib != k) {
+          try {
+            Plan q = planSet(*lib, progress_.sub(0.8, 1.0));
+            if (heldPlaces(q) < held) p = std::move(q);
+          } catch (const Cancelled&) {
+            throw;
+          } catch (const Error& e) {
+            sel_.sets[*lib].refused = e.what();
+          }
+        }
         // The tools the plan uses (a tool may fit nowhere or find nothing to cut).
         sel_.chosen.clear();
         for (const ToolCount& c : p.stats.perTool) sel_.chosen.push_back(c.diameter);
@@ -406,13 +416,34 @@ class ToolSetSearch {
       } catch (const Cancelled&) {
         throw;
       } catch (const Error& e) {
-        r.refused = e.what();
+        sel_.sets[k].refused = e.what();
       }
     }
     std::string why;
     for (const ToolSetResult& r : sel_.sets)
       if (!r.refused.empty()) why += "; " + setName(r.diameters) + ": " + r.refused;
     throw Error("tool selection: no tool set could be planned" + why);
+  }
+
+  // Set k planned in full, its estimate replaced by the plan's own minutes.
+  Plan planSet(size_t k, const Progress& progress) {
+    ToolSetResult& r = sel_.sets[k];
+    Plan p = stages_.plan(inputOf(r.diameters), std::move(placements_[k]), progress);
+    r.evaluated = true;
+    r.estimate = r.minutes;
+    r.plunges = p.stats.plungeCount;
+    r.coverage = p.stats.coverage;
+    r.minutes = p.stats.estimatedMinutes;
+    r.weighted = weighted(r.minutes, r.diameters.size());
+    return p;
+  }
+
+  // The places a plan's holders leave above their depth (BrokenLimit "stick_out").
+  static int heldPlaces(const Plan& p) {
+    int n = 0;
+    for (const BrokenLimit& b : p.broken)
+      if (b.limit == "stick_out") n += b.count;
+    return n;
   }
 
   std::vector<double> current() const {

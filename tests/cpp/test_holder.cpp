@@ -259,6 +259,38 @@ TEST(Holder, TheToolThatReachesGoesDeep) {
   EXPECT_GT(a.left, in.floor.surface.z + 5.0);
 }
 
+// The automatic tool choice counts the holders: its estimates cannot see them,
+// so where the set it estimates best leaves the floor to a holder, the whole
+// library is planned too and kept when it leaves less.
+TEST(Holder, TheToolChoiceKeepsTheToolThatReaches) {
+  PlanInput in = deepPocket();
+  Tool slim{12, 2, 300};
+  slim.fluteLength = 50.0;
+  slim.stickOut = 95.0;
+  slim.holderDiameter = 32.0;
+  Tool small{6, 3, 300};  // short: held 45 mm out (the choice always keeps the smallest)
+  small.fluteLength = 20.0;
+  small.stickOut = 45.0;
+  small.holderDiameter = 30.0;
+  in.choice.automatic = true;
+  in.choice.library = {in.tools[0], slim, small};
+  in.tools.clear();
+  // A tool change so dear that the estimates alone choose the 20 mm plunger.
+  in.motion.timeModel.toolChangeSeconds = 1800.0;
+  const Plan p = plan(in);
+  EXPECT_TRUE(std::any_of(p.plunges.begin(), p.plunges.end(), [](const Plunge& q) { return q.toolId == 2; }));
+  // What is still said is the short 6 mm plunger's, in the corners only it fits.
+  for (const BrokenLimit& b : p.broken)
+    if (b.limit == "stick_out") EXPECT_TRUE(Has(b.why, "of tool 3"));
+  ASSERT_TRUE(p.selection);
+  PlanInput used = in;
+  used.choice.automatic = false;
+  used.tools = used.choice.library;
+  const Collision c = replay(used, p);
+  EXPECT_EQ(c.count, 0) << c.first;
+  EXPECT_LE(c.left, in.floor.surface.z + in.floorAllowance + 1e-6);
+}
+
 // Levels that stay low: in a 120 x 80 x 60 mm pocket cut in two levels, the
 // moves between the second level's plunges go around the cusps the first left
 // standing along the walls (the wall band) instead of climbing over them, and
