@@ -104,8 +104,8 @@ def main():
 def deep_pocket_demo():
     """The second demo, where plunging pays: a 75 mm deep die pocket (Part
     workbench: boxes, fillet, cut), the same three plungers as plunge mills are
-    fed (1200 mm/min down, as across), 50 mm flutes, the automatic tool choice
-    on as for every new operation. Writes deep_pocket.ngc, .svg, .FCStd and
+    fed (1200 mm/min down, as across), 50 mm flutes, held 90 mm out in 40 mm
+    holders, the automatic tool choice on as for every new operation. Writes deep_pocket.ngc, .svg, .FCStd and
     deep_pocket_summary.txt."""
     import FreeCADGui
     import example_part
@@ -119,8 +119,11 @@ def deep_pocket_demo():
     job = compat.job_gui().Create([part], openTaskPanel=False)
     doc.recompute()
     face = example_part.floor_face_name(job.Model.Group[0].Shape, sculptured=False)
+    # Held 90 mm out in 40 mm holders: deep enough for the 75 mm pocket, the
+    # holders kept clear of its walls.
     op, tcs = example_part.add_plunge_rough(job, face, (20, 12, 6), bit_folder=os.path.join(OUT, "bits"),
-                                            RadialAllowance=0.5, FloorAllowance=0.3)
+                                            RadialAllowance=0.5, FloorAllowance=0.3, StickOut=90.0,
+                                            HolderDiameter=40.0)
     for tc in tcs:
         tc.VertFeed = tc.HorizFeed = "1200 mm/min"
     doc.recompute()
