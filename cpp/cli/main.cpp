@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
     if (plan.selection)
       for (const std::string& line : plan.selection->reasoning) std::cerr << line << "\n";
     if (!svg.empty())
-      for (plunge::SvgView view : plunge::svgViews(in))
+      for (plunge::SvgView view : plunge::svgViews(in, plan))
         writeFile(svgPath(svg, view), plunge::planToSvg(in, plan, view));
     if (!gcode.empty()) writeFile(gcode, plunge::planToGcode(in, plan));
   } catch (const plunge::Error& e) {

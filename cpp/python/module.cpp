@@ -167,7 +167,7 @@ PYBIND11_MODULE(plunge, m) {
   m.def("plan", &planDict, py::arg("input"), py::arg("svg") = false, py::arg("progress") = py::none(),
         "Plan a pocket: input and output dicts as in docs/plan-format.md; the result also "
         "holds \"summary\", the plan in one line for people (the CLI's), and with svg=True its pictures: \"svg\" the plan, "
-        "\"svg_stock\" the stock left, \"svg_heights\" the stop heights (sculptured floors). progress(fraction, stage) is called "
+        "\"svg_stock\" the stock left, \"svg_heights\" the stop heights (sculptured floors, or where a holder stopped plunges). progress(fraction, stage) is called "
         "about every 0.1 s while planning; returning False cancels (ValueError \"planning cancelled\"). "
         "Ctrl+C interrupts planning (KeyboardInterrupt).");
   m.def("start_hole_tools", &startHoleTools, py::arg("tools"),

@@ -41,7 +41,7 @@ json planCall(const json& input, bool svg, const Progress& progress) {
   json out = planToValue(plan);
   out["summary"] = planSummary(plan);
   if (svg)
-    for (SvgView view : svgViews(in))
+    for (SvgView view : svgViews(in, plan))
       out[view == SvgView::Plan ? std::string("svg") : std::string("svg_") + svgViewName(view)] =
           planToSvg(in, plan, view);
   return out;

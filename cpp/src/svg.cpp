@@ -394,10 +394,9 @@ class SvgPicture {
 
 }  // namespace
 
-std::vector<SvgView> svgViews(const PlanInput& input) {
-  // Stop heights differ over a sculptured floor, and where a holder may stop plunges.
-  const std::vector<Tool>& tools = input.choice.automatic ? input.choice.library : input.tools;
-  const bool held = std::any_of(tools.begin(), tools.end(), [](const Tool& t) { return t.stickOut.has_value(); });
+std::vector<SvgView> svgViews(const PlanInput& input, const Plan& plan) {
+  // Stop heights differ over a sculptured floor, and where a holder stopped plunges.
+  const bool held = std::any_of(plan.plunges.begin(), plan.plunges.end(), [](const Plunge& p) { return p.holderLimited; });
   if (input.floor.surface.kind == Floor::Kind::Flat && !held) return {SvgView::Plan, SvgView::Stock};
   return {SvgView::Plan, SvgView::Stock, SvgView::Heights};
 }

@@ -75,11 +75,11 @@ TEST(Svg, StockViewShowsWhatIsLeftAndEveryBrokenLimit) {
 
 TEST(Svg, HeightsOnlyOverASculpturedFloorDeepestOnTop) {
   PlanInput in = planInputFromJson(test::smallJobJson());
-  EXPECT_EQ(svgViews(in), (std::vector<SvgView>{SvgView::Plan, SvgView::Stock}));
+  EXPECT_EQ(svgViews(in, plan(in)), (std::vector<SvgView>{SvgView::Plan, SvgView::Stock}));
   in.floor.surface.kind = Floor::Kind::Expression;
   in.floor.surface.expression = "-20 + 0.05 * x";
   const Plan p = plan(in);
-  ASSERT_EQ(svgViews(in).size(), 3u);
+  ASSERT_EQ(svgViews(in, p).size(), 3u);
   const std::string svg = planToSvg(in, p, SvgView::Heights);
   const std::vector<std::string> cs = circles(svg);
   ASSERT_EQ(cs.size(), p.plunges.size());
@@ -119,18 +119,21 @@ TEST(Svg, PlanViewShowsTheMaterialBeforeAsItsBackground) {
   EXPECT_EQ(planToSvg(in, plan(in), SvgView::Plan).find("material before it"), std::string::npos);
 }
 
-// A tool with a stick-out: the stop heights are drawn over a flat floor too,
-// a red ring on each plunge its holder stopped, counted in the legend.
+// A holder that stops plunges: the stop heights are drawn over a flat floor
+// too, a red ring on each plunge it stopped, counted in the legend. A holder
+// out of reach draws none.
 TEST(Svg, HeightsMarkThePlungesAHolderStopped) {
   PlanInput in = planInputFromJson(test::smallJobJson());
   in.floor.surface.z = -60.0;
-  EXPECT_EQ(svgViews(in).size(), 2u);
+  EXPECT_EQ(svgViews(in, plan(in)).size(), 2u);
   for (Tool& t : in.tools) {
-    t.stickOut = 40.0;
+    t.stickOut = 200.0;
     t.holderDiameter = 2.5 * t.diameter;
   }
-  ASSERT_EQ(svgViews(in).size(), 3u);
+  EXPECT_EQ(svgViews(in, plan(in)).size(), 2u);
+  for (Tool& t : in.tools) t.stickOut = 40.0;
   const Plan p = plan(in);
+  ASSERT_EQ(svgViews(in, p).size(), 3u);
   const long held = std::count_if(p.plunges.begin(), p.plunges.end(), [](const Plunge& q) { return q.holderLimited; });
   ASSERT_GT(held, 0);
   const std::string svg = planToSvg(in, p, SvgView::Heights);
