@@ -280,8 +280,11 @@ TEST(Holder, TheToolChoiceKeepsTheToolThatReaches) {
   const Plan p = plan(in);
   EXPECT_TRUE(std::any_of(p.plunges.begin(), p.plunges.end(), [](const Plunge& q) { return q.toolId == 2; }));
   // What is still said is the short 6 mm plunger's, in the corners only it fits.
-  for (const BrokenLimit& b : p.broken)
-    if (b.limit == "stick_out") EXPECT_TRUE(Has(b.why, "of tool 3"));
+  for (const BrokenLimit& b : p.broken) {
+    if (b.limit == "stick_out") {
+      EXPECT_TRUE(Has(b.why, "of tool 3"));
+    }
+  }
   ASSERT_TRUE(p.selection);
   PlanInput used = in;
   used.choice.automatic = false;
