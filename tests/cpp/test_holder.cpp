@@ -51,6 +51,16 @@ PlanInput deepPocket(double stickOut = 60.0) {
   return in;
 }
 
+// The second tool: a slim 12 mm plunger with 50 mm flutes held 95 mm
+// out in a 32 mm holder (id 2).
+Tool slimTool() {
+  Tool slim{12, 2, 300};
+  slim.fluteLength = 50.0;
+  slim.stickOut = 95.0;
+  slim.holderDiameter = 32.0;
+  return slim;
+}
+
 // The replay's raster: cells of `h` mm over the pocket and 60 mm around.
 class Raster {
  public:
@@ -235,11 +245,7 @@ TEST(Holder, DeepPocketNoPostedMoveMeetsThePartOrTheStock) {
 // goes to the floor; nothing is left to say, and no holder meets the stock.
 TEST(Holder, TheToolThatReachesGoesDeep) {
   PlanInput in = deepPocket();
-  Tool slim{12, 2, 300};
-  slim.fluteLength = 50.0;
-  slim.stickOut = 95.0;
-  slim.holderDiameter = 32.0;
-  in.tools.push_back(slim);
+  in.tools.push_back(slimTool());
   const Plan p = plan(in);
   const Collision c = replay(in, p);
   EXPECT_EQ(c.count, 0) << c.first << ", " << c.worst << " mm into the clearance";
@@ -264,10 +270,7 @@ TEST(Holder, TheToolThatReachesGoesDeep) {
 // library is planned too and kept when it leaves less.
 TEST(Holder, TheToolChoiceKeepsTheToolThatReaches) {
   PlanInput in = deepPocket();
-  Tool slim{12, 2, 300};
-  slim.fluteLength = 50.0;
-  slim.stickOut = 95.0;
-  slim.holderDiameter = 32.0;
+  const Tool slim = slimTool();
   Tool small{6, 3, 300};  // short: held 45 mm out (the choice always keeps the smallest)
   small.fluteLength = 20.0;
   small.stickOut = 45.0;
