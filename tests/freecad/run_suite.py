@@ -16,7 +16,7 @@ SUITES = {
     "freecad_bundle": [HERE, "--ignore=" + os.path.join(HERE, "test_gui.py"), "-m", "bundle"],
 }
 suite = os.environ.get("PLUNGE_SUITE", "freecad")
-code = int(pytest.main(["-q", "-p", "no:cacheprovider"] + SUITES[suite]))
+code = int(pytest.main(["-q", "-p", "no:cacheprovider", "--durations=15"] + SUITES[suite]))
 # FreeCAD 1.1 drops what is still buffered when the script exits: the failures' report.
 sys.stdout.flush()
 sys.stderr.flush()
