@@ -182,6 +182,26 @@ double DepthSolver::plungeHeight(Vec2 c, const Cutter& cutter, double floorAllow
   return std::max(z, stopHeight(c, grownSideways(cutter, radialAllowance)));
 }
 
+double DepthSolver::plungeHeightAtLeast(Vec2 c, const Cutter& cutter, double floorAllowance,
+                                        double radialAllowance) const {
+  // Offset by the floor allowance, the cutter's sag at the rim is no larger
+  // (a larger ball or corner sags less), so the floor there plus the
+  // allowance less the rim's profile bounds plungeHeight's first term; grown
+  // sideways, its profile at r + allowance is the rim's, which bounds the second.
+  double low = -std::numeric_limits<double>::infinity();
+  auto ring = [&](double rho, double lift) {
+    for (int a = 0; a < 16; ++a) {
+      const double t = a * kPi / 8;
+      const double z = floor_.height(c + Vec2{std::cos(t), std::sin(t)} * rho);
+      if (!std::isnan(z)) low = std::max(low, z + lift);
+    }
+  };
+  const double rimProfile = cutterProfile(cutter, cutter.radius);
+  ring(cutter.radius, floorAllowance - rimProfile);
+  if (!floor_.isFlat() && radialAllowance > 0.0) ring(cutter.radius + radialAllowance, -rimProfile);
+  return low;
+}
+
 Cutter grownSideways(const Cutter& cutter, double by) {
   Cutter g = cutter;
   g.radius += by;

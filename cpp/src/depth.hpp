@@ -54,6 +54,17 @@ class DepthSolver {
   // wall, or a step between two selected levels, which is a wall of the lower
   // one. Throws plunge::Error when no floor is under the cutter.
   double plungeHeight(Vec2 center, const Cutter& cutter, double floorAllowance, double radialAllowance) const;
+  // A lower bound of plungeHeight from the floor at 16 points of the rim
+  // (where a flat plunger on a fillet stops) and, with a radial allowance, as
+  // far beyond it: about 1 % of the exact height's cost. It lets the rest step
+  // and the lead-outs turn down most plunges and moves that would stop too
+  // high without the exact height (-inf where no floor is under those points).
+  double plungeHeightAtLeast(Vec2 center, const Cutter& cutter, double floorAllowance, double radialAllowance) const;
+  // plungeHeight(...) <= z, the bound first.
+  bool plungesTo(Vec2 center, const Cutter& cutter, double floorAllowance, double radialAllowance, double z) const {
+    return !(plungeHeightAtLeast(center, cutter, floorAllowance, radialAllowance) > z) &&
+           !(plungeHeight(center, cutter, floorAllowance, radialAllowance) > z);
+  }
   const std::vector<Vec3>& peaks() const { return peaks_; }
   const FloorSurface& floor() const { return floor_; }
   // Where the optimizer ran out of its (generous) budget and a dense sample

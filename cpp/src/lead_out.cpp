@@ -115,7 +115,7 @@ bool LeadOutSearch::wallsKept(Vec2 end) const {
 bool LeadOutSearch::noGouge(Vec2 end) const {
   if (!wallsKept(end)) return false;
   return allAlong(c_, end, samples_, [&](Vec2 q) {
-    return !(x_.depths.plungeHeight(q, cutter_, x_.in.floorAllowance, x_.in.radialAllowance) > p_.z + 1e-6);
+    return x_.depths.plungesTo(q, cutter_, x_.in.floorAllowance, x_.in.radialAllowance, p_.z + 1e-6);
   });
 }
 
@@ -185,7 +185,7 @@ LeadOut LeadOutSearch::find(const std::optional<Plunge>& back) {
   const double margin = kCellHalfDiagonal * x_.stock.spacing();
   const double floor = p_.z + cutterProfile(cutter_, cutter_.radius) + kEngagementSkin;
   std::optional<Vec2> to = firstFitting([&](const End& e) {
-    return !x_.stock.meetsMaterial(e.at, cutter_, p_.z, margin) && !(x_.touched.highestAlong(c_, e.at, r_) > floor);
+    return !x_.stock.meetsMaterial(e.at, cutter_, p_.z, margin) && !x_.touched.standsAbove(c_, e.at, r_, floor);
   });
   if (!to) to = firstFitting([](const End& e) { return e.towardHole; });
   // Else any direction whose disk the holes cut so far (as deep) leave to

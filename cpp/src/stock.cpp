@@ -291,6 +291,14 @@ class RestStep {
       if (cand.bound < bestScore) break;
       if (bestScore > 0 && cand.bound == bestScore && cand.order > bestOrder) continue;
       CutDisk d = cand.disk;
+      // The rim's bound first (DepthSolver::plungeHeightAtLeast): the same
+      // pruning, tighter where the floor rises between samples.
+      d.z = std::max(
+          d.z, depths_.plungeHeightAtLeast(d.center, cutter(d), opt_.floorAllowance, opt_.radialAllowance) - kBoundSlack);
+      if (d.z >= opt_.topZ || !fixes(d, k)) continue;
+      if (const int bound = score(d);
+          bound < bestScore || (bestScore > 0 && bound == bestScore && cand.order > bestOrder))
+        continue;
       try {
         d.z = depths_.plungeHeight(d.center, cutter(d), opt_.floorAllowance, opt_.radialAllowance);
       } catch (const Error&) {

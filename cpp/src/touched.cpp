@@ -75,7 +75,12 @@ double Touched::highestAlong(Vec2 a, Vec2 b, double r) const {
   return material_.known() ? std::min(cut, material_.highestAlong(a, b, r)) : cut;
 }
 
-double Touched::highestCut(Vec2 a, Vec2 b, double r) const {
+bool Touched::standsAbove(Vec2 a, Vec2 b, double r, double z) const {
+  if (material_.known() && !(material_.highestAlong(a, b, r) > z)) return false;
+  return highestCut(a, b, r, z) > z;
+}
+
+double Touched::highestCut(Vec2 a, Vec2 b, double r, double above) const {
   const Segment path{a, b};
   const Vec2 lo{std::min(a.x, b.x) - r, std::min(a.y, b.y) - r}, hi{std::max(a.x, b.x) + r, std::max(a.y, b.y) + r};
   std::vector<Circle> near;
@@ -93,7 +98,8 @@ double Touched::highestCut(Vec2 a, Vec2 b, double r) const {
     }
   // Long moves over many disks go over the top of the stock: cheaper than the
   // exact test, and never lower than the truth.
-  if (near.empty() || near.size() > kMaxDisksPerMove || uncoveredWitness(a, b, r - 0.01, near)) return top_;
+  if (near.empty() || near.size() > kMaxDisksPerMove || highest > above || uncoveredWitness(a, b, r - 0.01, near))
+    return top_;  // (either way, at least `highest`)
   const double rs = r - 0.01;
   Polygons swept{poly::disk({a, rs})};
   if (dist(a, b) > 1e-9) {

@@ -1,6 +1,7 @@
 // The plunges made so far, as disks with the heights they cut to: the heights
 // of rapids, the levels and the lead-outs (motion.hpp) ask it.
 #pragma once
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -37,6 +38,10 @@ class Touched {
   // The highest stock a disk of radius r swept from a to b passes over (an
   // upper bound; never above the material there).
   double highestAlong(Vec2 a, Vec2 b, double r) const;
+  // Whether highestAlong(a, b, r) > z, without its polygon test where the
+  // disks met already stand higher than z (a plunge deeper than its
+  // neighbours: a rest plunge on a fillet).
+  bool standsAbove(Vec2 a, Vec2 b, double r, double z) const;
 
  private:
   struct Disk {
@@ -50,7 +55,9 @@ class Touched {
   static bool clearOf(const std::vector<Circle>& near, Vec2 q);
   static bool uncoveredWitness(Vec2 a, Vec2 b, double rs, const std::vector<Circle>& near);
   long cellOf(double v) const;
-  double highestCut(Vec2 a, Vec2 b, double r) const;  // as if the stock stood at top_z before the disks
+  double highestCut(Vec2 a, Vec2 b, double r, double above = kNoBound) const;  // as if the stock stood at top_z before the disks
+  // highestCut answers early, with a height above `above`, once it knows it is.
+  static constexpr double kNoBound = std::numeric_limits<double>::infinity();
   double bucket_, top_;
   Material material_;
   std::vector<Disk> disks_;

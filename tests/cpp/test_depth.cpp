@@ -279,6 +279,33 @@ TEST(Depth, PlungeHeightKeepsBothAllowancesIn3D) {
   EXPECT_GT(solver.plungeHeight({20, 40}, flat, fa, ra), solver.stopHeight({20, 40}, flat) + fa + 0.005);
 }
 
+TEST(Depth, TheRimBoundIsNeverAboveThePlungeHeight) {
+  // plungeHeightAtLeast lets the rest step and the lead-outs skip the exact
+  // height: it must never exceed it (or they would skip plunges and moves
+  // that fit), for any shape, allowance and place, and on a rise beside the
+  // cutter it should come near it (or it skips nothing).
+  const std::string expr = std::string(kBumps) + " + 10/(1+exp(-(x-50)))";
+  const auto floor = makeExpressionFloor(expr);
+  const DepthSolver solver(*floor, {0, 0}, {100, 75}, 2.0);
+  int near = 0, n = 0;
+  for (const Cutter& k : {Cutter{CutterShape::Flat, 6, 0}, Cutter{CutterShape::Ball, 5, 5}, Cutter{CutterShape::Bull, 6, 2},
+                          Cutter{CutterShape::Flat, 2.5, 0}})
+    for (double fa : {0.0, 0.3, -0.2})
+      for (double ra : {0.0, 0.5})
+        for (double x = 12; x <= 88; x += 9.7)
+          for (double y = 12; y <= 63; y += 12.1) {
+            const double exact = solver.plungeHeight({x, y}, k, fa, ra);
+            const double bound = solver.plungeHeightAtLeast({x, y}, k, fa, ra);
+            EXPECT_LE(bound, exact + 1e-9) << x << "," << y << " r " << k.radius << " fa " << fa << " ra " << ra;
+            EXPECT_EQ(solver.plungesTo({x, y}, k, fa, ra, exact + 1e-9), true);
+            EXPECT_EQ(solver.plungesTo({x, y}, k, fa, ra, exact - 1e-3), false);
+            ++n;
+            if (std::fabs(x - 50) < 10 && exact - bound < 0.05) ++near;
+          }
+  EXPECT_GT(n, 0);
+  EXPECT_GT(near, 10);  // on the rise the rim holds the plunger up
+}
+
 TEST(Depth, BadFloors) {
   EXPECT_THROW(makeExpressionFloor("sin(x"), Error);
   EXPECT_THROW(makeExpressionFloor("z + 1"), Error);
