@@ -384,32 +384,59 @@ void coverageStats(const PlanInput& in, const Region& region, const CoverResult&
 
 // The wall band at each section's height, measured on the final plunges: what
 // of the section's core no plunge through that height cut, and what no
-// plunger can reach there, each said where it is thicker than the band.
+// plunger can reach there, each said where it is thicker than the band. Also
+// just below each section, where it is worst: the walls lean in below a
+// section (fillets and blends left as walls, drafts), so the pocket there is
+// nearly as wide as the section, but only the plunges stopping lower cut it.
+// The worst of all is said, at its height.
 void wallBandAboveStats(const PlanInput& in, const ToolTable& tools, Plan& out) {
   if (in.covering.maxWallStock <= 0.0) return;
+  struct Worst {
+    WallStock band;
+    double z = 0.0;
+    bool below = false, corner = false;
+    const Region* region = nullptr;
+  };
+  std::optional<Worst> worst;
+  std::vector<Region> regions;
+  regions.reserve(in.floor.sections.size());
   for (const Section& s : in.floor.sections) {
     const double stop = s.z + in.floorAllowance;
-    const Region region(s.boundary, s.islands);
-    std::vector<Circle> through;
-    for (const Plunge& p : out.plunges) {
-      if (p.z > stop + 1e-9) continue;
-      const double r = radiusCutAt(cutterOf(tools.byId(p.toolId)), p.z, stop);
-      if (r > 0) through.push_back({{p.x, p.y}, r});
-    }
+    const Region& region = regions.emplace_back(s.boundary, s.islands);
     const Polygons accessible = accessibleRegion(region, 0.5 * in.tools.back().diameter, in.radialAllowance);
-    const Polygons left = uncoveredRegion(coreRegion(region, accessible, in.radialAllowance, in.covering.maxWallStock), through);
-    const WallStock uncut = wallStockLeft(region, left, {}, in.radialAllowance);
+    const Polygons core = coreRegion(region, accessible, in.radialAllowance, in.covering.maxWallStock);
+    // The plunges that cut at height `at`, each at its radius there.
+    auto cutAt = [&](double at) {
+      std::vector<Circle> through;
+      for (const Plunge& p : out.plunges) {
+        if (p.z > at + 1e-9) continue;
+        const double r = radiusCutAt(cutterOf(tools.byId(p.toolId)), p.z, at);
+        if (r > 0) through.push_back({{p.x, p.y}, r});
+      }
+      return through;
+    };
+    const WallStock uncut = wallStockLeft(region, uncoveredRegion(core, cutAt(stop)), {}, in.radialAllowance);
+    const WallStock under = wallStockLeft(region, uncoveredRegion(core, cutAt(stop - 1e-6)), {}, in.radialAllowance);
     const WallStock corner = outOfReach(region, in, accessible);
-    const WallStock& worst = corner.thickest > uncut.thickest ? corner : uncut;
-    if (worst.thickest <= in.covering.maxWallStock + kWallStockSlack) continue;
-    std::ostringstream w;
-    w << std::fixed << std::setprecision(2) << "at " << s.z << " mm, above the floor, up to " << worst.thickest
-      << " mm of stock stay on the walls, more than the " << in.covering.maxWallStock << " mm asked for";
-    sayBroken(out, w.str(),
-              {"max_wall_stock", in.covering.maxWallStock, worst.thickest, worst.at, 1,
-               &worst == &corner ? reachWhy(region, in, worst.at)
-                                 : "no plunger of the job fits there down to that height"});
+    for (const Worst w : {Worst{uncut, s.z, false, false, &region}, Worst{under, s.z, true, false, &region},
+                          Worst{corner, s.z, false, true, &region}})
+      if (w.band.thickest > in.covering.maxWallStock + kWallStockSlack &&
+          (!worst || w.band.thickest > worst->band.thickest + 1e-9))
+        worst = w;
   }
+  if (!worst) return;
+  std::ostringstream w;
+  w << std::fixed << std::setprecision(2) << (worst->below ? "just below " : "at ") << worst->z
+    << " mm, above the floor, up to " << worst->band.thickest << " mm of stock stay on the walls, more than the "
+    << in.covering.maxWallStock << " mm asked for";
+  sayBroken(out, w.str(),
+            {"max_wall_stock", in.covering.maxWallStock, worst->band.thickest, worst->band.at, 1,
+             worst->corner  ? reachWhy(*worst->region, in, worst->band.at)
+             : worst->below ? "the walls lean in below that height (fillets or blends left as walls, drafts): "
+                              "plunges stop at the heights where the pocket widens, and below each the pocket "
+                              "is wider than the plunges beneath cut (fillets included in the floor are plunged "
+                              "at their own heights)"
+                            : "no plunger of the job fits there down to that height"});
 }
 
 // The pocket as planned: the region (walls simplified when huge, the tolerance

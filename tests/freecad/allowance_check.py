@@ -466,8 +466,10 @@ def band_left(part, stops, z, radial, band, tol=0.01, step=0.05):
     of the pocket's cross-section there (the air at z around the stops), the
     points farther than radial + band + tol from its walls (the core), how far
     the farthest lies from what the stops cut at z (each stop's tool at its
-    radius there; lead-outs left out). {"z", "uncut", "at", "core_points"}:
-    uncut 0 when every point of the core was cut."""
+    radius there; lead-outs left out). {"z", "uncut", "at", "core_points",
+    "thickest", "thickest_at"}: uncut 0 when every point of the core was cut;
+    thickest, the band itself: the uncut point of the section farthest from
+    its walls, less the radial allowance (0 when all is cut)."""
     deep = [s for s in stops if s.kind == "stop" and s.z < z - 1e-9]
     if not deep:
         raise ValueError("no stop reaches below z = %g" % z)
@@ -477,18 +479,27 @@ def band_left(part, stops, z, radial, band, tol=0.01, step=0.05):
     disks = disks[disks[:, 2] > 1e-9]
     bb = air.BoundBox
     xs = np.arange(bb.XMin + step / 2, bb.XMax, step)
-    out = {"z": round(z, 4), "uncut": 0.0, "at": None, "core_points": 0}
+    out = {"z": round(z, 4), "uncut": 0.0, "at": None, "core_points": 0, "thickest": 0.0, "thickest_at": None}
     limit = radial + band + tol
     rows = max(1, int(20000 // max(len(xs), 1)))
     for y0 in np.arange(bb.YMin + step / 2, bb.YMax, step * rows):
         ys = y0 + step * np.arange(rows)
         points = np.array([(x, y) for y in ys for x in xs])
         inside, wall = _inside_and_wall(points, loops)
+        near = disks[(disks[:, 1] + disks[:, 2] >= ys[0]) & (disks[:, 1] - disks[:, 2] <= ys[-1])]
+        room, walls = points[inside], wall[inside]
+        if len(room):
+            cut = np.zeros(len(room), bool) if not len(near) else \
+                ((np.hypot(room[:, 0:1] - near[:, 0], room[:, 1:2] - near[:, 1]) - near[:, 2]) <= 0).any(axis=1)
+            if (~cut).any():
+                k = int(np.argmax(np.where(cut, -np.inf, walls)))
+                if walls[k] - radial > out["thickest"]:
+                    out["thickest"], out["thickest_at"] = float(walls[k] - radial), (round(room[k][0], 3),
+                                                                                     round(room[k][1], 3))
         core = points[inside & (wall > limit)]
         if not len(core):
             continue
         out["core_points"] += len(core)
-        near = disks[(disks[:, 1] + disks[:, 2] >= ys[0]) & (disks[:, 1] - disks[:, 2] <= ys[-1])]
         if not len(near):
             gap = np.full(len(core), np.inf)
         else:

@@ -474,3 +474,14 @@ def test_wall_band_above_the_floor(doc, tmp_path, walls, floor, together, includ
         assert left["core_points"] > 1000
         assert left["uncut"] <= 0.02, "at z = %.2f, uncut %.3f mm beyond the band at %s (%s)" % (
             z, left["uncut"], left["at"], op.Summary)
+    # Within the fillets the walls lean in: just below each section the pocket
+    # is nearly as wide as there, cut only by the plunges stopping lower. The
+    # band said (at its worst height) is no thinner than the band sliced
+    # there, and none is left thicker than the limit unsaid.
+    said = [b for b in PlungeRough.plan_of(op)["broken_limits"] if b["limit"] == "max_wall_stock"]
+    for s in data.get("sections", []):
+        left = ac.band_left(part, stops, s["z"] - 0.02, RADIAL, band, tol=0.02)
+        print("just below %.2f: %s" % (s["z"], left))
+        worst = said[0]["worst"] if said else band
+        assert left["thickest"] <= worst + 0.1, "just below z = %.2f, %.3f mm of band at %s, said %s (%s)" % (
+            s["z"], left["thickest"], left["thickest_at"], worst, op.Summary)

@@ -1,0 +1,86 @@
+"""A tray like NIST's (issue: floor rest on filleted floors): a 280 x 194 mm
+pocket 30 mm deep in a block, its walls rounded R12 and its floor edges
+filleted R6 (Part booleans and fillets, as a user models it); the floor face
+selected, fillets included (the default), 12/8/5 mm flat plungers from .fctb
+bits, Max Floor Stock 1 mm, allowances 0.5 mm radial and 0.3 mm floor. Timed
+as users get it: the recompute through the README's install (the module, the
+floor as BREP faces) and through the Linux bundle's program (the floor as a
+mesh), with the plans' plunges, rest plunges and the floor stock they leave.
+
+    sh resources/bundle.sh linux
+    XDG_DATA_HOME=$(mktemp -d) XDG_CONFIG_HOME=$(mktemp -d) freecadcmd tests/bench/bench_tray.py
+
+PLUNGE_BENCH_REPEAT (default 3) sets the repeats (the median is given)."""
+import os
+import statistics
+import sys
+import time
+import zipfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path[:0] = [ROOT, os.path.join(ROOT, "build", "cpp"), os.path.join(ROOT, "resources", "examples")]
+
+import FreeCAD  # noqa: E402
+import Part  # noqa: E402
+
+from example_part import add_plunge_rough, make_job  # noqa: E402
+from freecad_plugin import PlungeRough, planner  # noqa: E402
+
+REPEAT = int(os.environ.get("PLUNGE_BENCH_REPEAT", "3"))
+if not os.path.abspath(PlungeRough.__file__).startswith(ROOT):
+    sys.exit("the addon was loaded from %s, not this tree: run with a fresh XDG_DATA_HOME" % PlungeRough.__file__)
+V = FreeCAD.Vector
+
+
+def at_floor(edge, z=15.0):
+    b = edge.BoundBox
+    return abs(b.ZMin - z) < 1e-6 and abs(b.ZMax - z) < 1e-6 and b.XMin > 1 and b.YMin > 1 and b.XMax < 319 \
+        and b.YMax < 233
+
+
+def tray():
+    shape = Part.makeBox(320, 234, 45).cut(Part.makeBox(280, 194, 50, V(20, 20, 15))).removeSplitter()
+    walls = [e for e in shape.Edges if e.BoundBox.ZLength > 29 and e.BoundBox.XLength < 1e-6
+             and e.BoundBox.YLength < 1e-6 and 19 < e.BoundBox.XMin < 301 and 19 < e.BoundBox.YMin < 215]
+    shape = shape.makeFillet(12, walls)
+    shape = shape.makeFillet(6, [e for e in shape.Edges if at_floor(e)])
+    assert shape.isValid()
+    return shape
+
+
+part = tray()
+floor = next("Face%d" % (i + 1) for i, f in enumerate(part.Faces)
+             if isinstance(f.Surface, Part.Plane) and abs(f.BoundBox.ZMax - 15) < 1e-6 and f.Area > 40000)
+doc = FreeCAD.newDocument("BenchTray")
+job = make_job(doc, part)
+op, tcs = add_plunge_rough(job, floor, diameters=(12, 8, 5), MaxFloorStock=1.0, RadialAllowance=0.5,
+                           FloorAllowance=0.3)
+
+bundle = os.path.join(ROOT, "dist", "PlungeRough-linux-x86_64.zip")
+unzipped = os.path.join(ROOT, "build", "bench-bundle")
+with zipfile.ZipFile(bundle) as z:
+    z.extractall(unzipped)
+program = os.path.join(unzipped, "PlungeRough", "bin", "plunge-rough")
+os.chmod(program, 0o755)
+
+print("| planner | recompute | planning | plunges | rest plunges | floor stock left (max / mean) |")
+print("|---|---|---|---|---|---|")
+for name, command in (("module, BREP floor", None), ("bundle's program, mesh floor", program)):
+    if command:
+        os.environ[planner.ENVIRONMENT] = command
+    else:
+        os.environ.pop(planner.ENVIRONMENT, None)
+    whole, planning = [], []
+    for _ in range(REPEAT):
+        op.touch()
+        start = time.perf_counter()
+        doc.recompute()
+        whole.append(time.perf_counter() - start)
+        plan = PlungeRough.plan_of(op)
+        assert plan is not None, op.Summary
+        planning.append(plan["stats"]["planning_seconds"])
+    s = plan["stats"]
+    print("| %s | %.1f s | %.1f s | %d | %d | %.2f / %.2f mm |" % (
+        name, statistics.median(whole), statistics.median(planning), s["plunge_count"], s["rest_plunges"],
+        s["max_floor_stock_left"], s["mean_floor_stock"]))
+    print("  planned by", planner.planner().name, file=sys.stderr)
