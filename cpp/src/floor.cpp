@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <sstream>
+#include <iomanip>
 #include <muParser.h>
 
 #include "detail.hpp"
@@ -50,6 +53,47 @@ class ExpressionFloor : public FloorSurface {
     }
   }
   std::unique_ptr<FloorSurface> clone() const override { return std::make_unique<ExpressionFloor>(expr_); }
+  // On a 32 x 32 grid over the pocket, along x and along y, 21 samples over
+  // 0.01 mm and over 0.1 mm: a floor that turns up and down four times or
+  // more there, by 0.01 mm or more, is texture, not a shape a plunger follows
+  // (a ridge or a step turns at most twice). Deterministic, a few milliseconds.
+  std::string unfollowable(Vec2 lo, Vec2 hi) const override {
+    constexpr int kGrid = 32, kSamples = 21;
+    for (double length : {0.01, 0.1})
+      for (int j = 0; j < kGrid; ++j)
+        for (int i = 0; i < kGrid; ++i) {
+          const Vec2 p{lo.x + (hi.x - lo.x) * (i + 0.5) / kGrid, lo.y + (hi.y - lo.y) * (j + 0.5) / kGrid};
+          for (const Vec2 along : {Vec2{1, 0}, Vec2{0, 1}}) {
+            double z[kSamples];
+            bool finite = true;
+            for (int k = 0; k < kSamples && finite; ++k) {
+              z[k] = height(p + along * (length * k / (kSamples - 1)));
+              finite = !std::isnan(z[k]);
+            }
+            if (!finite) continue;
+            int turns = 0, sign = 0;
+            double low = z[0], high = z[0];
+            for (int k = 1; k < kSamples; ++k) {
+              low = std::min(low, z[k]);
+              high = std::max(high, z[k]);
+              const double d = z[k] - z[k - 1];
+              if (std::fabs(d) <= 1e-9 * (1.0 + std::fabs(z[k]))) continue;
+              const int s = d > 0 ? 1 : -1;
+              if (sign != 0 && s != sign) ++turns;
+              sign = s;
+            }
+            if (turns >= 4 && high - low >= 0.01) {
+              std::ostringstream m;
+              m << std::fixed << std::setprecision(3) << "floor.expression: it rises and falls by " << high - low
+                << " mm " << turns << " times within " << length << " mm at (" << p.x << ", " << p.y
+                << "), finer than any plunger or depth search can follow: describe the floor's shape without"
+                   " that texture";
+              return m.str();
+            }
+          }
+        }
+    return {};
+  }
   double height(Vec2 p) const override {
     x_ = p.x;
     y_ = p.y;

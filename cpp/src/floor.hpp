@@ -52,6 +52,11 @@ class FloorSurface {
   }
   // The same floor with its own evaluation state, for another thread.
   virtual std::unique_ptr<FloorSurface> clone() const = 0;
+  // Why no plunger can follow the floor over [lo, hi] ("" when one can): an
+  // expression may rise and fall on a scale no cutter or depth search
+  // resolves (sin(x*1e6)), and its depths would take hours to search. Faces
+  // and meshes come from a part: they cannot.
+  virtual std::string unfollowable(Vec2 /*lo*/, Vec2 /*hi*/) const { return {}; }
 };
 
 std::unique_ptr<FloorSurface> makeFlatFloor(double z);

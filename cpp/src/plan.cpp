@@ -750,6 +750,8 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   // The floor: flat, an expression or BREP faces (read before the long part).
   const std::unique_ptr<FloorSurface> floor = makeFloor(in);
   const Vec2 lo = pocket.region.minCorner(), hi = pocket.region.maxCorner();
+  // Refused before the long part: its depths would take hours.
+  if (const std::string why = floor->unfollowable(lo, hi); !why.empty()) throw Error(why);
   progress.stage(0.02, "analysing the floor");
   const DepthSolver depths(*floor, lo, hi, std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)),
                            progress);

@@ -306,6 +306,21 @@ TEST(Depth, TheRimBoundIsNeverAboveThePlungeHeight) {
   EXPECT_GT(near, 10);  // on the rise the rim holds the plunger up
 }
 
+TEST(Depth, AFloorNoPlungerCanFollowIsSaidSo) {
+  // A floor that rises and falls on a scale no cutter or depth search
+  // resolves is refused before planning (its depths took hours); shapes a
+  // plunger follows, steps and ridges among them, are not.
+  const Vec2 lo{0, 0}, hi{600, 400};
+  for (const char* texture : {"-25+sin(x*1e6)", "-25+sin(y*1e3)", "-25+0.5*sin(x*100)*cos(y*100)"}) {
+    const std::string why = makeExpressionFloor(texture)->unfollowable(lo, hi);
+    EXPECT_NE(why.find("floor.expression: it rises and falls by"), std::string::npos) << texture << ": " << why;
+  }
+  for (const char* shape : {kBumps, "-25+sin(x*10)", "-25+0.001*sin(x*1e6)", "x < 300 ? -20 : -10", "-abs(x-300)/10",
+                            "sqrt(x-100)", "-25"}) {
+    EXPECT_EQ(makeExpressionFloor(shape)->unfollowable(lo, hi), "") << shape;
+  }
+}
+
 TEST(Depth, BadFloors) {
   EXPECT_THROW(makeExpressionFloor("sin(x"), Error);
   EXPECT_THROW(makeExpressionFloor("z + 1"), Error);

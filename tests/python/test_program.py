@@ -131,3 +131,19 @@ def test_a_kill_stops_it_at_once(cli):
     """The addon cancels by killing the program: it must not hold on."""
     took, code = killed_while_planning([cli])
     assert took < 1.0 and code == -9
+
+
+def test_a_floor_no_plunger_can_follow_is_refused_first(plunge, cli):
+    """The 600 x 400 mm plate over -25+sin(x*1e6), a floor that rises and falls
+    every few micrometres: mutation fuzzing found it still planning after 15
+    minutes. Refused before planning, with the reason (the subprocess's
+    timeout only guards against the hang this was)."""
+    data = load_shape("benchmark")
+    data["floor"] = {"expression": "-25+sin(x*1e6)"}
+    run = subprocess.run([cli, "call"], input=json.dumps({"call": "plan", "input": data}), capture_output=True,
+                         text=True, timeout=120)
+    errors = [line for line in run.stderr.splitlines() if not line.startswith("progress ")]
+    assert run.returncode == 2 and run.stdout == "" and len(errors) == 1, errors
+    assert "floor.expression: it rises and falls by" in errors[0] and "finer than any plunger" in errors[0]
+    with pytest.raises(ValueError, match="finer than any plunger"):
+        plunge.plan(data)
