@@ -684,14 +684,30 @@ MotionOptions motionOptions(const PlanInput& in, const ToolTable& tools, const M
 }
 
 // Where the depth search ran out of budget, said (the plan stays gouge-free:
-// dense samples stand in, raised to bound the surface between them).
-void depthFallbacks(const DepthSolver& depths, Plan& out) {
+// dense samples stand in, raised to bound the surface between them), with
+// what does it on this kind of floor and what avoids it.
+void depthFallbacks(const PlanInput& in, const DepthSolver& depths, Plan& out) {
   out.stats.depthFallbacks = depths.peakFallbacks() + depths.depthFallbacks();
   if (out.stats.depthFallbacks == 0) return;
-  out.warnings.push_back("the depth search ran out of its budget on " + std::to_string(out.stats.depthFallbacks) +
-                         " floor faces, edges or plunges: their depths come from a dense sample of the floor,"
-                         " raised by the rise between samples (a floor of many tiny or badly parametrised faces"
-                         " does this; a cleaner export of the floor avoids it)");
+  const std::string n = std::to_string(out.stats.depthFallbacks);
+  const std::string places = out.stats.depthFallbacks == 1 ? " place" : " places";
+  const std::string sampled = ": their depths come from a dense sample of the floor, raised by the rise between samples";
+  switch (in.floor.surface.kind) {
+    case Floor::Kind::Expression:
+      out.warnings.push_back("the depth search ran out of its budget on " + n +
+                             places + " of the floor expression" + sampled +
+                             " (terms that change steeply or fast do this; a smoother expression avoids it)");
+      break;
+    case Floor::Kind::Mesh:
+      out.warnings.push_back("the depth search ran out of its budget on " + n + places + " of the floor mesh" + sampled +
+                             " (many tiny or sliver triangles do this; a coarser meshing of the faces avoids it)");
+      break;
+    default:
+      out.warnings.push_back("the depth search ran out of its budget on " + n +
+                             " floor faces, edges or plunges" + sampled +
+                             " (a floor of many tiny or badly parametrised faces does this; selecting fewer, cleaner"
+                             " faces, or a cleaner export of the part, avoids it)");
+  }
 }
 
 double secondsSince(std::chrono::steady_clock::time_point t0) {
@@ -827,7 +843,7 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   for (std::string& w : uncheckedHolders(out.plunges, tools, in.topZ)) out.warnings.push_back(std::move(w));
   reportFloorStock(in, measured.stock, out, finalDepthHeld);
   countPlunges(in, out);
-  depthFallbacks(depths, out);
+  depthFallbacks(in, depths, out);
   out.stats.planningSeconds = secondsSince(t0);
   return out;
 }

@@ -147,3 +147,16 @@ def test_a_floor_no_plunger_can_follow_is_refused_first(plunge, cli):
     assert "floor.expression: it rises and falls by" in errors[0] and "finer than any plunger" in errors[0]
     with pytest.raises(ValueError, match="finer than any plunger"):
         plunge.plan(data)
+
+
+def test_the_depth_budget_warning_fits_the_floor(plunge):
+    """Where the depth search runs out of budget the plan says so, naming the
+    kind of floor and a remedy for that kind: an expression is not told to
+    export its faces more cleanly."""
+    data = load_shape("convex")
+    data["floor"] = {"expression": "-25+0.001*sin(x*1e6)"}  # too fine for the search, too small to refuse
+    plan = plunge.plan(data)
+    said = [w for w in plan["warnings"] if w.startswith("the depth search ran out of its budget")]
+    assert plan["stats"]["depth_fallbacks"] >= 1 and len(said) == 1, plan["warnings"]
+    assert "of the floor expression" in said[0] and "a smoother expression avoids it" in said[0]
+    assert "export" not in said[0] and "faces" not in said[0]
