@@ -478,7 +478,7 @@ def test_wall_band_above_the_floor(doc, tmp_path, walls, floor, together, includ
     # is nearly as wide as there, cut only by the plunges stopping lower. The
     # band said (at its worst height) is no thinner than the band sliced
     # there, and none is left thicker than the limit unsaid.
-    said = [b for b in PlungeRough.plan_of(op)["broken_limits"] if b["limit"] == "max_wall_stock"]
+    said = [b for b in PlungeRough.plan_of(op).get("broken_limits", []) if b["limit"] == "max_wall_stock"]
     for s in data.get("sections", []):
         left = ac.band_left(part, stops, s["z"] - 0.02, RADIAL, band, tol=0.02)
         print("just below %.2f: %s" % (s["z"], left))
