@@ -290,10 +290,10 @@ TEST(Depth, TheRimBoundIsNeverAboveThePlungeHeight) {
   int near = 0, n = 0;
   for (const Cutter& k : {Cutter{CutterShape::Flat, 6, 0}, Cutter{CutterShape::Ball, 5, 5}, Cutter{CutterShape::Bull, 6, 2},
                           Cutter{CutterShape::Flat, 2.5, 0}})
-    for (double fa : {0.0, 0.3, -0.2})
+    for (double fa : {0.0, 0.3})
       for (double ra : {0.0, 0.5})
-        for (double x = 12; x <= 88; x += 9.7)
-          for (double y = 12; y <= 63; y += 12.1) {
+        for (double x = 12; x <= 88; x += 15.1)
+          for (double y = 12; y <= 63; y += 17) {
             const double exact = solver.plungeHeight({x, y}, k, fa, ra);
             const double bound = solver.plungeHeightAtLeast({x, y}, k, fa, ra);
             EXPECT_LE(bound, exact + 1e-9) << x << "," << y << " r " << k.radius << " fa " << fa << " ra " << ra;
