@@ -13,23 +13,19 @@ import os
 import statistics
 import sys
 import time
-import zipfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path[:0] = [ROOT, os.path.join(ROOT, "build", "cpp"), os.path.join(ROOT, "resources", "examples")]
+sys.path[:0] = [ROOT, os.path.join(ROOT, "build", "cpp"), os.path.join(ROOT, "resources", "examples"),
+                os.path.dirname(os.path.abspath(__file__))]
 
 import FreeCAD  # noqa: E402
 
+from both_planners import PLANNERS, bundle_program, recompute_timed  # noqa: E402
 from example_part import add_plunge_rough, floor_face_name, freeform_part, make_job  # noqa: E402
-from freecad_plugin import PlungeRough, floor_mesh, planner  # noqa: E402
+from freecad_plugin import floor_mesh, planner  # noqa: E402
 
 REPEAT = int(os.environ.get("PLUNGE_BENCH_REPEAT", "5"))
-bundle = os.path.join(ROOT, "dist", "PlungeRough-linux-x86_64.zip")
-unzipped = os.path.join(ROOT, "build", "bench-bundle")
-with zipfile.ZipFile(bundle) as z:
-    z.extractall(unzipped)
-program = os.path.join(unzipped, "PlungeRough", "bin", "plunge-rough")
-os.chmod(program, 0o755)
+program = bundle_program(ROOT)
 
 doc = FreeCAD.newDocument("BenchMesh")
 job = make_job(doc, freeform_part())
@@ -48,20 +44,9 @@ def timed_mesh(faces, *args, **kwargs):
 
 floor_mesh.floor_mesh = timed_mesh
 rows = []
-for name, command in (("module, BREP floor", None), ("bundle's program, mesh floor", program)):
-    if command:
-        os.environ[planner.ENVIRONMENT] = command
-    else:
-        os.environ.pop(planner.ENVIRONMENT, None)
+for name, through_bundle in PLANNERS:
     timings.clear()
-    whole, planning = [], []
-    for _ in range(REPEAT):
-        op.touch()
-        start = time.perf_counter()
-        doc.recompute()
-        whole.append(time.perf_counter() - start)
-        plan = PlungeRough.plan_of(op)
-        planning.append(plan["stats"]["planning_seconds"])
+    whole, planning, plan = recompute_timed(doc, op, program if through_bundle else None, REPEAT)
     floor = json.loads(op.PlanData)["input"]["floor"]
     rows.append((name, statistics.median(whole), statistics.median(timings["mesh"]) if "mesh" in timings else None,
                  statistics.median(planning), plan["stats"]["plunge_count"], plan["stats"]["estimated_minutes"],

@@ -14,16 +14,16 @@ PLUNGE_BENCH_REPEAT (default 3) sets the repeats (the median is given)."""
 import os
 import statistics
 import sys
-import time
-import zipfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path[:0] = [ROOT, os.path.join(ROOT, "build", "cpp"), os.path.join(ROOT, "resources", "examples")]
+sys.path[:0] = [ROOT, os.path.join(ROOT, "build", "cpp"), os.path.join(ROOT, "resources", "examples"),
+                os.path.dirname(os.path.abspath(__file__))]
 
 import FreeCAD  # noqa: E402
 import Part  # noqa: E402
 
 from example_part import add_plunge_rough, make_job  # noqa: E402
+from both_planners import PLANNERS, bundle_program, recompute_timed  # noqa: E402
 from freecad_plugin import PlungeRough, planner  # noqa: E402
 
 REPEAT = int(os.environ.get("PLUNGE_BENCH_REPEAT", "3"))
@@ -56,29 +56,11 @@ job = make_job(doc, part)
 op, tcs = add_plunge_rough(job, floor, diameters=(12, 8, 5), MaxFloorStock=1.0, RadialAllowance=0.5,
                            FloorAllowance=0.3)
 
-bundle = os.path.join(ROOT, "dist", "PlungeRough-linux-x86_64.zip")
-unzipped = os.path.join(ROOT, "build", "bench-bundle")
-with zipfile.ZipFile(bundle) as z:
-    z.extractall(unzipped)
-program = os.path.join(unzipped, "PlungeRough", "bin", "plunge-rough")
-os.chmod(program, 0o755)
-
+program = bundle_program(ROOT)
 print("| planner | recompute | planning | plunges | rest plunges | floor stock left (max / mean) |")
 print("|---|---|---|---|---|---|")
-for name, command in (("module, BREP floor", None), ("bundle's program, mesh floor", program)):
-    if command:
-        os.environ[planner.ENVIRONMENT] = command
-    else:
-        os.environ.pop(planner.ENVIRONMENT, None)
-    whole, planning = [], []
-    for _ in range(REPEAT):
-        op.touch()
-        start = time.perf_counter()
-        doc.recompute()
-        whole.append(time.perf_counter() - start)
-        plan = PlungeRough.plan_of(op)
-        assert plan is not None, op.Summary
-        planning.append(plan["stats"]["planning_seconds"])
+for name, through_bundle in PLANNERS:
+    whole, planning, plan = recompute_timed(doc, op, program if through_bundle else None, REPEAT)
     s = plan["stats"]
     print("| %s | %.1f s | %.1f s | %d | %d | %.2f / %.2f mm |" % (
         name, statistics.median(whole), statistics.median(planning), s["plunge_count"], s["rest_plunges"],
