@@ -287,18 +287,20 @@ class RestStep {
     CutDisk best;
     int bestScore = 0;
     size_t bestOrder = 0;
+    // A candidate that fixes at most `bound` samples cannot beat the best so far.
+    auto outranked = [&](int bound, size_t order) {
+      return bound < bestScore || (bestScore > 0 && bound == bestScore && order > bestOrder);
+    };
     for (const Candidate& cand : candidates) {
-      if (cand.bound < bestScore) break;
-      if (bestScore > 0 && cand.bound == bestScore && cand.order > bestOrder) continue;
+      if (cand.bound < bestScore) break;  // sorted by bound: so are all after it
+      if (outranked(cand.bound, cand.order)) continue;
       CutDisk d = cand.disk;
       // The rim's bound first (DepthSolver::plungeHeightAtLeast): the same
       // pruning, tighter where the floor rises between samples.
       d.z = std::max(
           d.z, depths_.plungeHeightAtLeast(d.center, cutter(d), opt_.floorAllowance, opt_.radialAllowance) - kBoundSlack);
       if (d.z >= opt_.topZ || !fixes(d, k)) continue;
-      if (const int bound = score(d);
-          bound < bestScore || (bestScore > 0 && bound == bestScore && cand.order > bestOrder))
-        continue;
+      if (outranked(score(d), cand.order)) continue;
       try {
         d.z = depths_.plungeHeight(d.center, cutter(d), opt_.floorAllowance, opt_.radialAllowance);
       } catch (const Error&) {
