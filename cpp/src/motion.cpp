@@ -64,8 +64,13 @@ std::vector<Plunge> splitIntoLevels(const std::vector<Plunge>& ordered, const Mo
         levels = std::max(levels, static_cast<int>(std::ceil((top.back() - ordered[k].z) / step - 1e-9)));
     }
     stats.levels = std::max(stats.levels, levels);
+    // Every other level runs its path backwards: it starts where the level
+    // above ended instead of crossing the pocket back. Not for a tool with an
+    // engagement limit: its order is what keeps each plunge within it.
+    const bool turn = !std::isfinite(engagementLimit(t));
     for (int level = 1; level <= levels; ++level)
-      for (size_t k = i; k < j; ++k) {
+      for (size_t n = 0; n < j - i; ++n) {
+        const size_t k = turn && level % 2 == 0 ? j - 1 - n : i + n;
         Plunge p = ordered[k];
         p.z = level == levels ? p.z : std::max(p.z, top[k - i] - level * step);
         // Already at its depth on an earlier level.

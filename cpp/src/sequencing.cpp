@@ -491,6 +491,42 @@ std::vector<int> shortenKeepingOrder(const std::vector<Vec2>& p, const std::func
   return order;
 }
 
+namespace {
+
+// The order over points; an open path begins at startNode (if >= 0), a closed
+// tour at any node.
+std::vector<int> solve(const std::vector<Vec2>& points, bool closed, int startNode, const TourOptions& options) {
+  const int n = static_cast<int>(points.size());
+  std::vector<int> order;
+  if (n <= 7) return exhaustive(points, closed, closed ? -1 : startNode);
+  std::mt19937_64 rng(options.seed);
+  Tsp tsp(points, !closed, closed ? -1 : startNode, options.poll);
+  tsp.greedyEdge();
+  if (options.method == TourMethod::Annealing) {
+    if (tsp.anneal(rng)) {  // fewer moves than the thesis: polish
+      tsp.queueAll();
+      tsp.localSearch();
+    }
+  } else {
+    tsp.queueAll();
+    tsp.localSearch();
+    // Kicks: 20 per point for small instances, fewer for large ones (1000 at 5000 points).
+    const long long kicks =
+        options.kicks >= 0 ? options.kicks : std::min<long long>(20LL * n, std::max<long long>(1000, 5000000LL / n));
+    tsp.iterate(kicks, rng);
+  }
+  const std::vector<int>& t = tsp.order();
+  if (closed) return t;
+  // Cut the cycle at the dummy node.
+  const int m = static_cast<int>(t.size());
+  const int at = static_cast<int>(std::find(t.begin(), t.end(), tsp.dummy()) - t.begin());
+  for (int k = 1; k < m; ++k) order.push_back(t[(at + k) % m]);
+  if (startNode >= 0 && order.front() != startNode) std::reverse(order.begin(), order.end());
+  return order;
+}
+
+}  // namespace
+
 std::vector<int> tour(const std::vector<Vec2>& points, bool closed, std::optional<Vec2> start,
                       const TourOptions& options) {
   for (const Vec2& p : points)
@@ -499,47 +535,22 @@ std::vector<int> tour(const std::vector<Vec2>& points, bool closed, std::optiona
     throw Error("tour: start is not a finite point");
   const int n = static_cast<int>(points.size());
   if (n == 0) return {};
-  int startNode = -1;
-  if (start) {
-    startNode = 0;
-    for (int i = 1; i < n; ++i)
-      if (dist(points[i], *start) < dist(points[startNode], *start)) startNode = i;
+  if (!start) return solve(points, closed, -1, options);
+  if (!closed) {
+    // An open path from a place: the place is its first node, so the first
+    // point is chosen with the others (the nearest one can make the path longer).
+    std::vector<Vec2> from(points);
+    from.push_back(*start);
+    std::vector<int> order = solve(from, false, n, options);
+    order.erase(order.begin());
+    return order;
   }
-  std::vector<int> order;
-  if (n <= 7) {
-    order = exhaustive(points, closed, closed ? -1 : startNode);
-  } else {
-    std::mt19937_64 rng(options.seed);
-    Tsp tsp(points, !closed, closed ? -1 : startNode, options.poll);
-    tsp.greedyEdge();
-    if (options.method == TourMethod::Annealing) {
-      if (tsp.anneal(rng)) {  // fewer moves than the thesis: polish
-        tsp.queueAll();
-        tsp.localSearch();
-      }
-    } else {
-      tsp.queueAll();
-      tsp.localSearch();
-      // Kicks: 20 per point for small instances, fewer for large ones (1000 at 5000 points).
-      const long long kicks =
-          options.kicks >= 0 ? options.kicks : std::min<long long>(20LL * n, std::max<long long>(1000, 5000000LL / n));
-      tsp.iterate(kicks, rng);
-    }
-    const std::vector<int>& t = tsp.order();
-    if (closed) {
-      order = t;
-    } else {
-      // Cut the cycle at the dummy node.
-      const int m = static_cast<int>(t.size());
-      const int at = static_cast<int>(std::find(t.begin(), t.end(), tsp.dummy()) - t.begin());
-      for (int k = 1; k < m; ++k) order.push_back(t[(at + k) % m]);
-      if (startNode >= 0 && order.front() != startNode) std::reverse(order.begin(), order.end());
-    }
-  }
-  if (closed && startNode >= 0) {
-    // A closed tour begins at the point nearest to start.
-    std::rotate(order.begin(), std::find(order.begin(), order.end(), startNode), order.end());
-  }
+  // A closed tour begins at the point nearest to start.
+  int nearest = 0;
+  for (int i = 1; i < n; ++i)
+    if (dist(points[i], *start) < dist(points[nearest], *start)) nearest = i;
+  std::vector<int> order = solve(points, true, -1, options);
+  std::rotate(order.begin(), std::find(order.begin(), order.end(), nearest), order.end());
   return order;
 }
 

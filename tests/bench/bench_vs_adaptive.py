@@ -393,7 +393,7 @@ def time_table(results):
             air = [c["air_length"] / max(c["feed_length"], 1e-9) for c in (r["plunge"][m.name],
                                                                           r["adaptive"][m.name])]
             estimate = "%.1f" % r["plan"][m.name]["stats"]["estimated_minutes"]
-            print("| %s | %s | %.1f (%.1f / %.1f / %.1f) | %.1f (%.1f / %.1f / %.1f) | %.1f | %.2f | %.2f | "
+            print("| %s | %s | %.2f (%.1f / %.1f / %.1f) | %.2f (%.1f / %.1f / %.1f) | %.1f | %.3f | %.2f | "
                   "%.0f %% / %.0f %% | %s |" % (
                       r["name"], m.name, p["total"], p["feed"], p["rapid"], p["changes"], a["total"], a["feed"],
                       a["rapid"], a["changes"], b, p["total"] / a["total"], p["total"] / b, 100 * air[0],

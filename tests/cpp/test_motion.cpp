@@ -109,6 +109,31 @@ struct HandMadeBox {
   }();
 };
 
+// Levels: every other one runs the path backwards, so it starts where the one
+// above ended; a tool with an engagement limit keeps its order (it keeps each
+// plunge within the limit).
+TEST(Motion, EveryOtherLevelStartsWhereTheOneAboveEnded) {
+  for (const bool limited : {false, true}) {
+    HandMadeBox box;
+    Tool t{20, 1, 150};
+    t.fluteLength = 12.0;
+    if (limited) t.maxEngagement = 15.0;
+    box.o.tools = ToolTable({t});
+    std::vector<Plunge> row;
+    for (double x : {15.0, 35.0, 55.0, 75.0}) row.push_back(plungeOf(box.o.tools.all().front(), {x, 30.0}, -20.0));
+    PlanStats stats;
+    const std::vector<Plunge> levels = splitIntoLevels(row, box.o, stats);
+    ASSERT_EQ(stats.levels, 2);
+    ASSERT_EQ(levels.size(), 8u);
+    for (size_t k = 0; k < 4; ++k) {
+      EXPECT_EQ(levels[k].level, 0);
+      EXPECT_EQ(levels[4 + k].level, 1);
+      EXPECT_DOUBLE_EQ(levels[k].x, row[k].x);
+      EXPECT_DOUBLE_EQ(levels[4 + k].x, row[limited ? k : 3 - k].x) << "limited " << limited;
+    }
+  }
+}
+
 // Motion on its own: two plunges of a row, made by hand, with nothing but the
 // machine's options (no plan input). The second cuts a crescent beside the
 // first: it rapids down to just above the stock, leads out back into the first

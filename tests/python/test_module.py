@@ -107,7 +107,13 @@ def test_tour(plunge):
     pts = [(math.cos(k), math.sin(k)) for k in range(30)]
     order = plunge.tour(pts)
     assert sorted(order) == list(range(30))
-    assert plunge.tour(pts, closed=False, start=(2, 0))[0] == 0
+    # An open path from a place is short with the way there: on a line, from
+    # 5.4, out to the nearer end and back (12.6), not first to the nearest point.
+    line = [(float(x), 0.0) for x in (3, 7, 0, 9, 5, 1, 8, 2, 6, 4)]
+    path = plunge.tour(line, closed=False, start=(5.4, 0))
+    assert sorted(path) == list(range(10))
+    way = [(5.4, 0.0)] + [line[i] for i in path]
+    assert sum(math.dist(way[i], way[i + 1]) for i in range(10)) == pytest.approx(12.6)
     assert plunge.tour([]) == []
     with pytest.raises(ValueError, match="finite"):
         plunge.tour([(0, 0), (float("nan"), 1)])

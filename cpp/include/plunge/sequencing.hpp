@@ -29,7 +29,9 @@ struct TourOptions {
 };
 
 // A permutation of the point indices making the tour short. closed = false
-// gives an open path; with `start`, it begins at the point nearest to start.
+// gives an open path; with `start`, the path is short from start on (start to
+// its first point included). A closed tour with `start` begins at the point
+// nearest to it.
 // Throws plunge::Error for non-finite coordinates.
 std::vector<int> tour(const std::vector<Vec2>& points, bool closed = true,
                       std::optional<Vec2> start = std::nullopt, const TourOptions& options = {});
