@@ -227,7 +227,7 @@ def post(job, name):
 def minutes(program, model):
     """The program's cycle time under a feed model: feeds at the model's feed (or
     their F), rapids at RAPID (3D length), TOOL_CHANGE per M6, dwells."""
-    feed = rapid = 0.0
+    feed = rapid = down = 0.0
     for m in program.moves:
         length = math.dist(m.a, m.b)
         if m.rapid:
@@ -237,8 +237,19 @@ def minutes(program, model):
             if not rate:
                 raise ValueError("a feed move without F")
             feed += length / rate
+            if m.b[2] < m.a[2] - 1e-6 and math.dist(m.a[:2], m.b[:2]) < 1e-6:
+                down += length / rate
     changes = program.tool_changes * TOOL_CHANGE / 60.0
-    return {"total": feed + rapid + changes + program.dwell / 60.0, "feed": feed, "rapid": rapid, "changes": changes}
+    return {"total": feed + rapid + changes + program.dwell / 60.0, "feed": feed, "rapid": rapid, "changes": changes,
+            "down": down}
+
+
+def break_even(plunge, adaptive):
+    """Model A's plunge feed (the side feed) times this is the plunge feed at
+    which Plunge Rough takes as long as Adaptive: its feeds straight down scale
+    with the plunge feed, everything else stays (the same plan)."""
+    rest = plunge["total"] - plunge["down"]
+    return plunge["down"] / (adaptive["total"] - rest) if adaptive["total"] > rest else float("inf")
 
 
 def plunges_per_tool(program):
@@ -418,6 +429,14 @@ def main():
     volume_table(results)
     print()
     time_table(results)
+    print()
+    print("| pocket | mean depth / largest plunger's diameter | Plunge Rough is faster than Adaptive above this "
+          "plunge feed (x the side feed) |")
+    print("|---|---|---|")
+    for r in results:
+        g = r["geometry"]
+        print("| %s | %.1f | %.2f |" % (r["name"], g["volume"] / g["area"] / 20.0,
+                                        break_even(r["plunge_minutes"]["A"], r["adaptive_minutes"]["A"])))
     notes = [(r["name"], n) for r in results for n in checks(r)]
     print("\nchecks (the G-code's plunges per tool = the plan's, the planner's volume = the replay's, volumes "
           "within %g %% of the target and of each other, no gouge, no rapid through stock): %s"
