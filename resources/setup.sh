@@ -10,7 +10,7 @@ PACKAGES="cmake g++ make pkg-config
   libeigen3-dev libmuparser-dev libtbb-dev
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev
   libocct-visualization-dev
-  pybind11-dev python3-dev libgtest-dev python3-pytest python3-shapely python3-jsonschema python3-scipy
+  pybind11-dev python3-dev libgtest-dev libgmock-dev python3-pytest python3-shapely python3-jsonschema python3-scipy
   python3-numpy freecad xvfb xauth libgl1-mesa-dri"
 
 . "$ROOT/resources/apt.sh"

@@ -1,6 +1,7 @@
 // The Python module `plunge` (docs/cli.md, docs/plan-format.md): conversions and
 // bindings only. plunge::Error becomes ValueError, plunge::InternalError
-// RuntimeError; long calls release the GIL.
+// RuntimeError, plunge::Cancelled a ValueError too ("planning cancelled");
+// long calls release the GIL.
 #include <pybind11/functional.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -164,6 +165,7 @@ PYBIND11_MODULE(plunge, m) {
   m.doc() = "Plunge roughing planner: circle packing, gap covering, sequencing and depths";
   py::register_exception<plunge::Error>(m, "PlanError", PyExc_ValueError);
   py::register_exception<plunge::InternalError>(m, "InternalError", PyExc_RuntimeError);
+  py::register_exception<plunge::Cancelled>(m, "Cancelled", PyExc_ValueError);
   m.def("plan", &planDict, py::arg("input"), py::arg("svg") = false, py::arg("progress") = py::none(),
         "Plan a pocket: input and output dicts as in docs/plan-format.md; the result also "
         "holds \"summary\", the plan in one line for people (the CLI's), and with svg=True its pictures: \"svg\" the plan, "

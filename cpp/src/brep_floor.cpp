@@ -278,8 +278,6 @@ class BrepFloor : public FloorSurface {
     try {
       r = optimize([&](const double* uv) { return z(uv[0], uv[1]); }, {{f.u0, f.u1}, {f.v0, f.v1}},
                    Goal::Maximize, peakOptions(n, progress));
-    } catch (const Cancelled&) {
-      throw;
     } catch (const Error&) {
       return;  // no finite value: a face with nothing inside its parameter box
     }

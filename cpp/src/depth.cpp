@@ -59,8 +59,6 @@ RimMax rimMaximum(const std::function<double(Vec2)>& g, Vec2 c, double r, double
         Goal::Maximize, opt);
     converged = converged && o.converged;
     return {o.value, o.x[0]};
-  } catch (const Cancelled&) {
-    throw;
   } catch (const Error&) {
     return {};  // no floor anywhere on the rim
   }
@@ -154,8 +152,6 @@ double DepthSolver::searchedStopHeight(Vec2 c, const Cutter& cutter, bool& conve
                                         {{c.x - R, c.x + R}, {c.y - R, c.y + R}}, Goal::Maximize, opt);
       best = std::max(best, o.value);
       converged = converged && o.converged;
-    } catch (const Cancelled&) {
-      throw;
     } catch (const Error&) {
       // no floor under the disk: reported below unless the rim found some
     }

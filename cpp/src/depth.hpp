@@ -56,7 +56,7 @@ class DepthSolver {
   double plungeHeight(Vec2 center, const Cutter& cutter, double floorAllowance, double radialAllowance) const;
   // A lower bound of plungeHeight from the floor at 16 points of the rim
   // (where a flat plunger on a fillet stops) and, with a radial allowance, as
-  // far beyond it: about 1 % of the exact height's cost. It lets the rest step
+  // far beyond it: about 1 % of the exact height's cost. It lets the floor-stock step
   // and the lead-outs turn down most plunges and moves that would stop too
   // high without the exact height (-inf where no floor is under those points).
   double plungeHeightAtLeast(Vec2 center, const Cutter& cutter, double floorAllowance, double radialAllowance) const;

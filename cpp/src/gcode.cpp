@@ -18,14 +18,18 @@ std::string planToGcode(const PlanInput& input, const Plan& plan) {
   // A plunge's tool by its id, as everywhere: one the input lacks is the
   // planner's fault (InternalError), never a feed of 0.
   const ToolTable tools(input.choice.automatic ? input.choice.library : input.tools);
+  const char* stop = input.motion.coolant == Coolant::Off ? "M5\n" : "M9\nM5\n";
   int current = -1;
   for (const Plunge& p : plan.plunges) {
     if (p.toolId != current) {
-      if (current >= 0) s << "M5\n";
+      if (current >= 0) s << stop;
       s << "G0 Z" << input.safeZ << "\n";
       s << "(T" << p.toolId << ": plunger diameter " << p.diameter << ")\n";
       s << "T" << p.toolId << " M6\n";
-      s << "M3\n";
+      // The spindle, and the coolant with it (off before the tool change).
+      s << "M3 S" << std::setprecision(0) << spindleSpeedOf(tools.byId(p.toolId)) << std::setprecision(4) << "\n";
+      if (input.motion.coolant == Coolant::Flood) s << "M8\n";
+      if (input.motion.coolant == Coolant::Mist) s << "M7\n";
       s << "G0 Z" << input.safeZ << "\n";
       current = p.toolId;
     }
@@ -47,7 +51,7 @@ std::string planToGcode(const PlanInput& input, const Plan& plan) {
     s << "G0 Z" << p.retractZ << "\n";
     for (Vec2 v : p.via) s << "G0 X" << v.x << " Y" << v.y << "\n";
   }
-  if (current >= 0) s << "M5\n";
+  if (current >= 0) s << stop;
   s << "M30\n";
   return s.str();
 }

@@ -217,7 +217,7 @@ void Grower::shortenTour(size_t begin) {
 // Over a sculptured floor the growth's plunges stop at their own heights,
 // a little above the planned ones in places. What they leave within the
 // floor stock limit (max_floor_stock, kFloorBand of it) is the floor's
-// stock, as in the rest step (stock.hpp), not a target: a plunge for it
+// stock, as in the floor-stock step (stock.hpp), not a target: a plunge for it
 // would cut a sliver of a few tenths (the planned rest plunges, where it is
 // thicker, stay targets). A target point is done as soon as it is cut that
 // low, so a path position that would only deepen such points is not made.

@@ -84,6 +84,11 @@ TourMethod tourMethodFromName(const std::string& name) {
                               {{"local_search", TourMethod::LocalSearch}, {"annealing", TourMethod::Annealing}});
 }
 
+Coolant coolantFromName(const std::string& name) {
+  return fromName<Coolant>(name, "coolant", "coolant",
+                           {{"off", Coolant::Off}, {"flood", Coolant::Flood}, {"mist", Coolant::Mist}});
+}
+
 GridPattern gridPatternFromName(const std::string& name) {
   return fromName<GridPattern>(name, "grid.pattern", "pattern",
                                {{"square", GridPattern::Square}, {"honeycomb", GridPattern::Honeycomb}});
@@ -101,7 +106,7 @@ std::vector<Tool> toolList(const json& ts, const std::string& what, std::vector<
     onlyKeys(ts[i],
              {"diameter", "id", "feed", "shape", "corner_radius", "max_engagement", "min_engagement",
               "center_cutting", "core_diameter", "flute_length", "peck_depth", "stick_out", "holder_diameter",
-              "shank_diameter"},
+              "shank_diameter", "spindle_speed"},
              name + ": ");
     if (!ts[i].contains("diameter")) throw Error(name + ".diameter: required");
     Tool t;
@@ -150,6 +155,13 @@ std::vector<Tool> toolList(const json& ts, const std::string& what, std::vector<
       if (ts[i].contains(key)) *v = length(key);
     if (ts[i].contains("core_diameter")) t.coreDiameter = length("core_diameter");
     if (ts[i].contains("peck_depth")) t.peckDepth = length("peck_depth");
+    if (ts[i].contains("spindle_speed")) {
+      const double n = number(ts[i]["spindle_speed"], name + ".spindle_speed");
+      if (!(n > 0.0 && n <= kMaxSpindleSpeed))
+        throw Error(name + ".spindle_speed: expected rev/min above 0 and up to " +
+                    std::to_string(static_cast<int>(kMaxSpindleSpeed)));
+      t.spindleSpeed = n;
+    }
     if (ts[i].contains("center_cutting")) {
       if (!ts[i]["center_cutting"].is_boolean()) throw Error(name + ".center_cutting: expected true or false");
       t.centerCutting = ts[i]["center_cutting"].get<bool>();
@@ -346,6 +358,7 @@ void readScalars(const json& j, PlanInput& in) {
   if (j.contains("growth_pattern"))
     in.engagement.pattern = growthPatternFromName(stringOf(j["growth_pattern"], "growth_pattern"));
   if (j.contains("sequencing")) in.motion.sequencing = tourMethodFromName(stringOf(j["sequencing"], "sequencing"));
+  if (j.contains("coolant")) in.motion.coolant = coolantFromName(stringOf(j["coolant"], "coolant"));
 }
 
 }  // namespace
@@ -380,7 +393,7 @@ PlanInput planInputFromValue(const json& j) {
             "min_coverage", "contact_ratio", "packing_order", "growth_pattern", "sequencing", "start",
             "tool_library", "selection", "time_model", "grid", "max_wall_stock", "max_floor_stock", "lead_out",
             "stock_aware_heights", "rapid_clearance", "holder_clearance", "max_plunges", "final_depth", "peck", "peck_dwell",
-            "sections", "material"},
+            "sections", "material", "coolant"},
            "input: ");
   PlanInput in;
   if (j.contains("version") && !(j["version"].is_number_integer() && j["version"].get<long long>() == 1))
@@ -493,7 +506,9 @@ json planToValue(const Plan& plan) {
                   {"volume_before", s.volumeBefore},
                   {"air_plunges", s.airPlunges},
                   {"rest_material", s.restMaterial},
-                  {"rest_plunges", s.restPlunges},
+                  {"floor_stock_plunges", s.floorStockPlunges},
+                  // Its old name, still written for readers of older plans (docs/plan-format.md).
+                  {"rest_plunges", s.floorStockPlunges},
                   {"start_holes", s.startHoles},
                   {"over_engaged", s.overEngaged},
                   {"thin_cuts", s.thinCuts},

@@ -20,6 +20,8 @@ constexpr double kMaxLength = 1e5;
 constexpr double kMaxToolDiameter = 1000.0;
 // Tool numbers (G-code T words) run from 1 to this.
 constexpr int kMaxToolId = 1000000;
+// Spindle speeds, rev/min: beyond the fastest spindles made.
+constexpr double kMaxSpindleSpeed = 100000.0;
 // Boundary and island vertices together.
 constexpr size_t kMaxVertices = 1000000;
 // Cells of the material before the operation ("material"): 4 million (2000 x 2000).

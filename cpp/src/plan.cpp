@@ -172,13 +172,13 @@ void sequence(const PlanInput& in, const ToolTable& tools, const std::vector<Cut
     for (int i : tour(pts, false, at, to)) {
       const Vec2 p = pts[i];
       out.plunges.push_back(plungeOf(tool, p, mine[i]->z));
-      out.plunges.back().rest = mine[i]->rest;
+      out.plunges.back().forFloorStock = mine[i]->forFloorStock;
       at = p;
     }
   }
 }
 
-// The rest step in Z: plunges added where a sculptured floor keeps more stock
+// The floor-stock step: plunges added where a sculptured floor keeps more stock
 // than asked for (stock.hpp).
 // The stock samples of the pocket, with the wall band along steps in the floor
 // (a rise of the limit and two sample steps between neighbours: no floor slope).
@@ -190,20 +190,20 @@ StockGrid stockGrid(const PlanInput& in, const Region& region, const FloorSurfac
   return grid;
 }
 
-void restStep(const PlanInput& in, const ToolTable& tools, const Region& region, const FloorSurface& floor,
+void floorStockStep(const PlanInput& in, const ToolTable& tools, const Region& region, const FloorSurface& floor,
               const DepthSolver& depths, std::vector<CutDisk>& disks, Plan& out, const Progress& progress) {
   if (!isSculptured(in, floor) || in.floor.maxFloorStock <= 0.0) return;
   StockGrid grid = stockGrid(in, region, floor, out.stats.regionArea, 0.5 * tools.all().back().diameter, progress);
   for (const CutDisk& d : disks) grid.cut(d, cutterOf(tools.byId(d.toolId)));
-  progress.stage(0.85, "rest machining in Z");
-  RestOptions ro;
+  progress.stage(0.85, "plunges for the floor stock");
+  FloorStockOptions ro;
   ro.maxFloorStock = in.floor.maxFloorStock;
   ro.radialAllowance = in.radialAllowance;
   ro.floorAllowance = in.floorAllowance;
   ro.topZ = in.topZ;
   ro.progress = progress;
-  const RestResult rest = restInZ(region, depths, tools, grid, ro);
-  disks.insert(disks.end(), rest.added.begin(), rest.added.end());
+  const FloorStockResult added = plungeFloorStock(region, depths, tools, grid, ro);
+  disks.insert(disks.end(), added.added.begin(), added.added.end());
 }
 
 // The stock the plan's plunges leave on the floor, and the volumes: measured
@@ -296,8 +296,9 @@ void countPlunges(const PlanInput& in, Plan& out) {
   out.stats.startHoles = static_cast<int>(
       std::count_if(out.plunges.begin(), out.plunges.end(), [](const Plunge& p) { return p.startHole; }));
   out.stats.plungeCount = static_cast<int>(out.plunges.size());
-  out.stats.restPlunges = static_cast<int>(
-      std::count_if(out.plunges.begin(), out.plunges.end(), [](const Plunge& p) { return p.rest && p.level == 0; }));
+  out.stats.floorStockPlunges = static_cast<int>(
+      std::count_if(out.plunges.begin(), out.plunges.end(),
+                    [](const Plunge& p) { return p.forFloorStock && p.level == 0; }));
 }
 
 // The radius a plunge of `cutter` with its tip at z cuts at height `at`: all
@@ -520,8 +521,6 @@ void wallBandAbove(const PlanInput& in, const ToolTable& tools, const DepthSolve
       try {  // over the floor, no lower than the floor allows
         z = std::max(z, depths.plungeHeight(n.center, cutterOf(tools.all()[n.tool]), in.floorAllowance,
                                             in.radialAllowance));
-      } catch (const Cancelled&) {
-        throw;
       } catch (const Error&) {
         // no floor under it: the section's height holds it
       }
@@ -531,7 +530,7 @@ void wallBandAbove(const PlanInput& in, const ToolTable& tools, const DepthSolve
 }
 
 // Plunge positions and their stop heights: packing and covering (or the grid),
-// the depth of each (4.4), the rest step in Z, then no plunge below final_depth
+// the depth of each (4.4), the floor-stock step, then no plunge below final_depth
 // (held: whether that raised any plunge above the floor).
 // (placed: the positions when the tool choice has placed them already.)
 std::vector<CutDisk> placeAndDepth(const PlanInput& in, const ToolTable& tools, const Pocket& pocket,
@@ -546,7 +545,7 @@ std::vector<CutDisk> placeAndDepth(const PlanInput& in, const ToolTable& tools, 
   out.stats.regionArea = poly::area(allowedRegion(pocket.region, in.radialAllowance));
   progress.stage(0.75, "plunge depths");
   std::vector<CutDisk> disks = depthsOf(in, cover, depths, progress);
-  restStep(in, tools, pocket.region, floor, depths, disks, out, progress);
+  floorStockStep(in, tools, pocket.region, floor, depths, disks, out, progress);
   wallBandAbove(in, tools, depths, disks, progress);
   held = false;
   if (in.floor.finalDepth)
@@ -621,8 +620,6 @@ std::vector<CutDisk> reachWhereHeld(const PlanInput& in, const ToolTable& tools,
     double z = lowest;
     try {
       z = std::max(z, depths.plungeHeight(n.center, cutterOf(t), in.floorAllowance, in.radialAllowance));
-    } catch (const Cancelled&) {
-      throw;
     } catch (const Error&) {
       continue;  // no floor under it
     }
@@ -809,7 +806,7 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   }
   out.plunges = std::move(holders.plunges);
   const HolderLimits held = holderLimits(stillHeld(pocket, tools, holders.stops, out.plunges), tools, mount.clearance);
-  // Measured on the final plunges (the rest step and the limits add to the
+  // Measured on the final plunges (the floor-stock step and the limits add to the
   // covering's), on another thread with its own floor while the motion is
   // planned: the moves between the plunges change neither where they cut nor
   // how deep. Reported in the order of the stages.

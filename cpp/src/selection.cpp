@@ -138,10 +138,10 @@ std::vector<double> candidateTools(const PlanInput& in, const Region& region, To
 // A plunge's stop (5.3): the highest floor under its centre and two rings,
 // plus the allowance, held at the final depth (NaN where no floor is under it);
 // and the share of those points where it leaves more than max_floor_stock
-// (what the rest step in Z then plunges again, plan.cpp).
+// (what the floor-stock step then plunges again, plan.cpp).
 struct Stop {
   double z = 0.0;
-  double restShare = 0.0;
+  double floorStockShare = 0.0;
 };
 
 Stop stopOf(const PlanInput& in, const FloorSurface& floor, Vec2 c, double r) {
@@ -168,7 +168,7 @@ Stop stopOf(const PlanInput& in, const FloorSurface& floor, Vec2 c, double r) {
       ++n;
       rest += s.z - v > in.floor.maxFloorStock && in.floor.maxFloorStock > 0.0;
     }
-  s.restShare = static_cast<double>(rest) / n;
+  s.floorStockShare = static_cast<double>(rest) / n;
   s.z += in.floorAllowance;
   return s;
 }
@@ -223,7 +223,7 @@ double estimateMinutes(const PlanInput& in, const std::vector<CoverDisk>& disks,
     used[k] = true;
     const double depth = material.highest(d.center, d.radius) - stop.z;
     if (!(depth > 0.0)) continue;
-    restArea += stop.restShare * kPi * d.radius * d.radius;
+    restArea += stop.floorStockShare * kPi * d.radius * d.radius;
     // Levels of the flute length (motion.hpp), each fed from the clearance over
     // its stock: depth + c per level in all. Level k rapids down through the k - 1
     // cut above it and retracts from its bottom: L (depth + c) at rapid in all.
@@ -237,7 +237,7 @@ double estimateMinutes(const PlanInput& in, const std::vector<CoverDisk>& disks,
     }
     perTool[k] += minutes;
   }
-  // The rest step in Z: the floor stock beyond the limit plunged again by the
+  // The floor-stock step: the floor stock beyond the limit plunged again by the
   // smallest tool, in hexagonal cells, each a short plunge through max_floor_stock
   // plus the clearance, and its rapid to the next.
   if (restArea > 0.0) {
@@ -368,8 +368,6 @@ class ToolSetSearch {
       placements_[sel_.sets.size()] = std::move(cover);
       r.weighted = weighted(r.minutes, diameters.size());
       best_ = std::min(best_, r.weighted);
-    } catch (const Cancelled&) {
-      throw;
     } catch (const Error& e) {
       r.refused = e.what();
     }
@@ -403,8 +401,6 @@ class ToolSetSearch {
           try {
             Plan q = planSet(*lib, progress_.sub(0.8, 1.0));
             if (heldPlaces(q) < held) p = std::move(q);
-          } catch (const Cancelled&) {
-            throw;
           } catch (const Error& e) {
             sel_.sets[*lib].refused = e.what();
           }
@@ -413,8 +409,6 @@ class ToolSetSearch {
         sel_.chosen.clear();
         for (const ToolCount& c : p.stats.perTool) sel_.chosen.push_back(c.diameter);
         return p;
-      } catch (const Cancelled&) {
-        throw;
       } catch (const Error& e) {
         sel_.sets[k].refused = e.what();
       }

@@ -50,7 +50,7 @@ struct ToolSetStages {
 // 5.3: the minutes a plan of input.tools would take with plunges at `disks`
 // (each of the input.tools of its radius), each stopping on the floor under it: tool
 // changes, feed through the stock in flute-length levels, pecks of holes into
-// solid, retracts and rapids between neighbours, and the rest step in Z where
+// solid, retracts and rapids between neighbours, and the floor-stock step where
 // a position leaves more than max_floor_stock. Engagement limits are not seen
 // (their growth replaces the covering, engagement.hpp): the sets are ranked as
 // if free, and only the chosen one is planned with them.

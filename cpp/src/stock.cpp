@@ -62,7 +62,7 @@ StockGrid::StockGrid(const Region& region, const FloorSurface& floor, double rad
       const double z = floor.height(p);
       if (!std::isfinite(z)) continue;
       floor_[k] = z + floorAllowance;
-      // The rest step also targets one sample step beyond the band: the core's
+      // The floor-stock step also targets one sample step beyond the band: the core's
       // own edge is a thin strip that a raster would otherwise sample only here and there.
       core_[k] = w >= radialAllowance + wallBand ? 2 : w >= radialAllowance + wallBand - spacing ? 1 : 0;
     }
@@ -126,15 +126,15 @@ double StockGrid::maxSlope() const {
 
 namespace {
 
-// The rest step in Z, step by step: the samples over the limit, highest first;
+// The floor-stock step, step by step: the samples over the limit, highest first;
 // for each still over it, unless hopeless, the candidate plunges of every tool
 // around it, ranked by a bound of how many over-limit samples each fixes; the
 // best by exact stop height (branch and bound: the same choice as trying them
 // all); cut, and the samples it fixed struck off.
-class RestStep {
+class FloorStockStep {
  public:
-  RestStep(const Region& region, const DepthSolver& depths, const ToolTable& tools, StockGrid& grid,
-           const RestOptions& opt)
+  FloorStockStep(const Region& region, const DepthSolver& depths, const ToolTable& tools, StockGrid& grid,
+                 const FloorStockOptions& opt)
       : region_(region), depths_(depths), tools_(tools), grid_(grid), opt_(opt), h_(grid.neighbourhood()) {
     for (const Tool& t : tools.all()) cutters_.push_back(cutterOf(t));
     // Every point lies within a neighbourhood (0.75 of a sample step) of a sample,
@@ -146,8 +146,8 @@ class RestStep {
     for (int a = 0; a < 8; ++a) compass_[a] = {std::cos(a * kPi / 4), std::sin(a * kPi / 4)};
   }
 
-  RestResult run() {
-    RestResult out;
+  FloorStockResult run() {
+    FloorStockResult out;
     for (size_t k : overLimit()) {
       opt_.progress.tick();
       if (!isOver_[k]) continue;
@@ -162,7 +162,7 @@ class RestStep {
       }
       cut(*best);
       out.added.push_back(*best);
-      out.added.back().rest = true;
+      out.added.back().forFloorStock = true;
     }
     return out;
   }
@@ -335,7 +335,7 @@ class RestStep {
   const ToolTable& tools_;
   std::vector<Cutter> cutters_;  // in the table's order
   StockGrid& grid_;
-  const RestOptions& opt_;
+  const FloorStockOptions& opt_;
   const double h_;
   double target_ = 0.0;
   std::array<Vec2, 8> compass_;  // unit vectors every 45 degrees
@@ -344,10 +344,10 @@ class RestStep {
 
 }  // namespace
 
-RestResult restInZ(const Region& region, const DepthSolver& depths, const ToolTable& tools, StockGrid& grid,
-                   const RestOptions& opt) {
+FloorStockResult plungeFloorStock(const Region& region, const DepthSolver& depths, const ToolTable& tools,
+                                  StockGrid& grid, const FloorStockOptions& opt) {
   if (tools.all().empty()) return {};
-  return RestStep(region, depths, tools, grid, opt).run();
+  return FloorStockStep(region, depths, tools, grid, opt).run();
 }
 
 StockReport measureStock(const StockGrid& grid, const Material& material) {

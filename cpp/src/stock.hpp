@@ -1,4 +1,4 @@
-// The stock a plan leaves for the finisher, and rest machining in Z.
+// The stock a plan leaves for the finisher, and plunges for the floor stock.
 //
 // Roughing is judged by what it leaves (docs/plan-format.md, "Stock left"):
 // - along the walls, the band of material no plunge reaches (measured on the
@@ -7,10 +7,11 @@
 // - over the floor, the height of the stock above floor + floor allowance
 //   where plunges cut: a plunge stops at the highest floor point under its disk
 //   (depth.hpp, thesis 4.4), so over a sculptured floor it leaves steps.
-// Both are measured on a raster of the pocket (StockGrid). The rest step adds
+// Both are measured on a raster of the pocket (StockGrid). The floor-stock step adds
 // plunges where the floor stock exceeds a limit: smaller plungers, or the same
-// one centred lower, each with its own gouge-free stop height (rest machining
-// in Z), chosen greedily by how many over-limit samples each clears.
+// one centred lower, each with its own gouge-free stop height (what CAM calls
+// rest machining in Z; here "rest" means rest plunging only, material.hpp),
+// chosen greedily by how many over-limit samples each clears.
 #pragma once
 #include <limits>
 #include <vector>
@@ -29,7 +30,7 @@ struct CutDisk {
   Vec2 center;
   int toolId = 0;
   double z = 0.0;
-  bool rest = false;  // added by the rest step in Z (restInZ)
+  bool forFloorStock = false;  // added by the floor-stock step (plungeFloorStock)
 };
 
 // Samples of the pocket every `spacing` mm (row-major from `origin`): the
@@ -109,14 +110,14 @@ class StockGrid {
   double spacing_;
   size_t nx_ = 0, ny_ = 0;
   std::vector<double> floor_, cut_, safe_;
-  std::vector<char> core_;  // 2: in the core, 1: one step around it (rest targets), 0: the wall band
+  std::vector<char> core_;  // 2: in the core, 1: one step around it (floor-stock targets), 0: the wall band
 };
 
 // Sample spacing for a pocket: fine enough to resolve the floor's steps
 // (about 200,000 samples), never coarser than a quarter of the smallest tool.
 double stockSpacing(double area, double minRadius);
 
-struct RestOptions {
+struct FloorStockOptions {
   double maxFloorStock = 1.0;  // mm above floor + floor allowance
   double radialAllowance = 0.0;
   double floorAllowance = 0.0;
@@ -124,7 +125,7 @@ struct RestOptions {
   Progress progress;
 };
 
-struct RestResult {
+struct FloorStockResult {
   std::vector<CutDisk> added;  // appended to the plan's disks, in the order chosen
   int unreachable = 0;         // over-limit samples no plunge of the job can bring under the limit
 };
@@ -132,8 +133,8 @@ struct RestResult {
 // Adds plunges until no cut sample's floor stock exceeds the limit (less a
 // margin for what lies between samples), or no plunge of any tool helps.
 // `grid` must already hold the plan's cuts; it is updated with the added ones.
-RestResult restInZ(const Region& region, const DepthSolver& depths, const ToolTable& tools,
-                   StockGrid& grid, const RestOptions& options);
+FloorStockResult plungeFloorStock(const Region& region, const DepthSolver& depths, const ToolTable& tools,
+                                  StockGrid& grid, const FloorStockOptions& options);
 
 struct StockReport {
   double maxFloorStock = 0.0;   // over cut samples of the core

@@ -21,7 +21,7 @@ std::string planSummary(const Plan& plan) {
     s << "; rest plunging: " << st.volumeBefore / 1000 << " cm3 in the pocket before this operation, "
       << 100 * st.volumeRemoved / std::max(st.volumeBefore, 1e-9) << " % of it removed here"
       << (st.airPlunges ? ", " + std::to_string(st.airPlunges) + " plunges in cleared space left out" : std::string());
-  if (st.restPlunges) s << "; " << st.restPlunges << " plunges added for the floor stock";
+  if (st.floorStockPlunges) s << "; " << st.floorStockPlunges << " plunges added for the floor stock";
   if (st.startHoles) s << "; " << st.startHoles << " start holes";
   if (st.peckedPlunges) s << "; " << st.peckedPlunges << " deep holes into solid pecked";
   if (st.levels > 1) s << "; " << st.levels << " levels (flute length)";

@@ -1,6 +1,7 @@
 #include "plunge/tools.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -25,6 +26,10 @@ Plunge plungeOf(const Tool& t, Vec2 c, double z) {
 double coreRadius(const Tool& t) { return t.centerCutting ? 0.0 : 0.5 * t.coreDiameter; }
 
 double peckDepthOf(const Tool& t) { return t.peckDepth > 0.0 ? t.peckDepth : 3.0 * t.diameter; }
+
+double spindleSpeedOf(const Tool& t) {
+  return t.spindleSpeed.value_or(std::round(1000.0 * kDefaultCuttingSpeed / (kPi * t.diameter)));
+}
 
 double engagementLimit(const Tool& t) {
   double e = t.maxEngagement.value_or(std::numeric_limits<double>::infinity());

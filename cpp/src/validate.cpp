@@ -141,7 +141,7 @@ void validateOptions(const PlanInput& in) {
   requireFinite(in.covering.maxWallStock, "max_wall_stock");
   if (in.covering.maxWallStock < 0.0) throw Error("max_wall_stock must be >= 0 (0: cover down to min_coverage)");
   requireFinite(in.floor.maxFloorStock, "max_floor_stock");
-  if (in.floor.maxFloorStock < 0.0) throw Error("max_floor_stock must be >= 0 (0: no rest plunges)");
+  if (in.floor.maxFloorStock < 0.0) throw Error("max_floor_stock must be >= 0 (0: no floor-stock plunges)");
   requireFinite(in.motion.leadOut, "lead_out");
   if (in.motion.leadOut < 0.0) throw Error("lead_out must be >= 0 (0: retract straight up)");
   requireFinite(in.motion.rapidClearance, "rapid_clearance");

@@ -3,7 +3,7 @@
 example, the plan with the default 1 mm wall band against the honeycomb grid of
 the same tools and against covering to 99.6 % (max_wall_stock 0): plunges, core
 coverage, thickest wall stock; then the sculptured floors with and without the
-rest step in Z (max_floor_stock 1 mm): floor stock, volume left, plunges added.
+floor-stock step in Z (max_floor_stock 1 mm): floor stock, volume left, plunges added.
 
     /usr/bin/python3 tests/bench/bench_stock.py
 """
@@ -53,7 +53,7 @@ def main():
                     name, label, s["plunge_count"], 100 * s["core_coverage"], s["max_wall_stock_left"],
                     s["planning_seconds"]))
         print()
-        print("| floor | rest step | plunges (added) | floor stock max / mean | volume left | planning |")
+        print("| floor | floor-stock step | plunges (added) | floor stock max / mean | volume left | planning |")
         print("|---|---|---|---|---|---|")
         floors = [("example sculptured (expression)", os.path.join(EXAMPLES, "sculptured.json"), {})]
         brep = os.path.join(ROOT, "tests", "data", "floors", "bumps.brep")
@@ -68,7 +68,7 @@ def main():
             for label, limit in [("off (max_floor_stock 0)", 0), ("1 mm", 1.0)]:
                 s = run(dict(base, max_floor_stock=limit), tmp, os.path.dirname(path))
                 print("| %s | %s | %d (%d) | %.2f / %.2f mm | %.1f cm³ | %.2f s |" % (
-                    name, label, s["plunge_count"], s["rest_plunges"], s["max_floor_stock_left"],
+                    name, label, s["plunge_count"], s["floor_stock_plunges"], s["max_floor_stock_left"],
                     s["mean_floor_stock"], s["volume_left"] / 1000, s["planning_seconds"]))
 
 

@@ -63,6 +63,6 @@ for name, through_bundle in PLANNERS:
     whole, planning, plan = recompute_timed(doc, op, program if through_bundle else None, REPEAT)
     s = plan["stats"]
     print("| %s | %.1f s | %.1f s | %d | %d | %.2f / %.2f mm |" % (
-        name, statistics.median(whole), statistics.median(planning), s["plunge_count"], s["rest_plunges"],
+        name, statistics.median(whole), statistics.median(planning), s["plunge_count"], s["floor_stock_plunges"],
         s["max_floor_stock_left"], s["mean_floor_stock"]))
     print("  planned by", planner.planner().name, file=sys.stderr)

@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <BRepBuilderAPI_MakeEdge.hxx>
@@ -22,6 +23,7 @@
 #include "plunge/error.hpp"
 
 using namespace plunge;
+using ::testing::HasSubstr;
 
 namespace {
 
@@ -280,7 +282,7 @@ TEST(Depth, PlungeHeightKeepsBothAllowancesIn3D) {
 }
 
 TEST(Depth, TheRimBoundIsNeverAboveThePlungeHeight) {
-  // plungeHeightAtLeast lets the rest step and the lead-outs skip the exact
+  // plungeHeightAtLeast lets the floor-stock step and the lead-outs skip the exact
   // height: it must never exceed it (or they would skip plunges and moves
   // that fit), for any shape, allowance and place, and on a rise beside the
   // cutter it should come near it (or it skips nothing).
@@ -313,7 +315,7 @@ TEST(Depth, AFloorNoPlungerCanFollowIsSaidSo) {
   const Vec2 lo{0, 0}, hi{600, 400};
   for (const char* texture : {"-25+sin(x*1e6)", "-25+sin(y*1e3)", "-25+0.5*sin(x*100)*cos(y*100)"}) {
     const std::string why = makeExpressionFloor(texture)->unfollowable(lo, hi);
-    EXPECT_NE(why.find("floor.expression: it rises and falls by"), std::string::npos) << texture << ": " << why;
+    EXPECT_THAT(why, HasSubstr("floor.expression: it rises and falls by")) << texture << ": " << why;
   }
   for (const char* shape : {kBumps, "-25+sin(x*10)", "-25+0.001*sin(x*1e6)", "x < 300 ? -20 : -10", "-abs(x-300)/10",
                             "sqrt(x-100)", "-25"}) {

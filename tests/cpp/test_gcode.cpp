@@ -1,4 +1,5 @@
 // The plan as RS-274 G-code (gcode.hpp), parsed back.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <algorithm>
 #include <cmath>
@@ -13,6 +14,9 @@
 #include "testutil.hpp"
 
 using namespace plunge;
+using ::testing::Not;
+using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
 
 namespace {
 
@@ -192,7 +196,80 @@ TEST(Gcode, FeedsByToolIdAndRefusesAnUnknownOne) {
     f << " F" << std::fixed << std::setprecision(4) << t.feed << "\n";
     EXPECT_EQ(used, g.find(f.str()) != std::string::npos) << t.id;
   }
-  EXPECT_EQ(g.find(" F200.0000"), std::string::npos);  // no default feed
+  EXPECT_THAT(g, Not(HasSubstr(" F200.0000")));  // no default feed
   p.plunges.back().toolId = 999;
   EXPECT_THROW(planToGcode(in, p), InternalError);
+}
+
+// The spindle runs at each tool's speed (its own, or 100 m/min of cutting
+// speed) and the coolant the input asks for is on, at every feed move; both
+// are off at each tool change and at the end. Read back as a machine would.
+TEST(Gcode, SpindleAndCoolantAreOnWhereverTheToolCuts) {
+  for (const char* coolant : {"off", "flood", "mist"}) {
+    SCOPED_TRACE(coolant);
+    std::string j = test::smallJobJson();
+    const std::string from = R"({"diameter": 12, "id": 4})";
+    j.replace(j.find(from), from.size(), R"({"diameter": 12, "id": 4, "spindle_speed": 4321})");
+    j.insert(j.rfind('}'), std::string(R"(, "coolant": ")") + coolant + "\"");
+    const PlanInput in = planInputFromJson(j);
+    const Plan p = plan(in);
+    std::istringstream g(planToGcode(in, p));
+    std::map<int, double> expected;
+    for (const Tool& t : in.tools)
+      expected[t.id] = t.spindleSpeed ? *t.spindleSpeed : std::round(100000.0 / (kPi * t.diameter));
+    EXPECT_DOUBLE_EQ(expected.at(4), 4321.0);
+    const std::string wanted = std::string(coolant) == "flood" ? "M8" : std::string(coolant) == "mist" ? "M7" : "";
+    int tool = -1, feeds = 0;
+    double speed = 0;  // 0: spindle stopped
+    std::string on;    // the coolant code in force
+    std::string line;
+    while (std::getline(g, line)) {
+      if (line.empty() || line[0] == '(') continue;
+      std::istringstream w(line);
+      std::string word;
+      while (w >> word) {
+        if (word[0] == 'T') {
+          EXPECT_EQ(speed, 0) << "a tool change with the spindle on";
+          EXPECT_EQ(on, "") << "a tool change with the coolant on";
+          tool = std::stoi(word.substr(1));
+        } else if (word == "M3") {
+          std::string s;
+          ASSERT_TRUE(w >> s) << line;
+          ASSERT_EQ(s[0], 'S') << line;
+          speed = std::stod(s.substr(1));
+          EXPECT_EQ(speed, expected.at(tool)) << "tool " << tool;
+        } else if (word == "M5") {
+          EXPECT_EQ(on, "") << "the spindle stops under coolant";
+          speed = 0;
+        } else if (word == "M7" || word == "M8") {
+          on = word;
+        } else if (word == "M9") {
+          on = "";
+        } else if (word == "G1") {
+          ++feeds;
+          EXPECT_GT(speed, 0) << line;
+          EXPECT_EQ(on, wanted) << line;
+        } else if (word == "M30") {
+          EXPECT_EQ(speed, 0);
+          EXPECT_EQ(on, "");
+        }
+      }
+    }
+    EXPECT_GT(feeds, 0);
+  }
+}
+
+TEST(Gcode, SpindleSpeedAndCoolantAreChecked) {
+  std::string j = test::smallJobJson();
+  const std::string from = R"({"diameter": 12, "id": 4})";
+  for (const char* bad : {R"("spindle_speed": 0)", R"("spindle_speed": -5)", R"("spindle_speed": 2e6)",
+                          R"("spindle_speed": "fast")"}) {
+    std::string k = j;
+    k.replace(k.find(from), from.size(), std::string(R"({"diameter": 12, "id": 4, )") + bad + "}");
+    EXPECT_THAT([&] { planInputFromJson(k); }, ThrowsMessage<Error>(HasSubstr("spindle_speed"))) << bad;
+  }
+  std::string k = j;
+  k.insert(k.rfind('}'), R"(, "coolant": "oil")");
+  EXPECT_THAT([&] { planInputFromJson(k); },
+              ThrowsMessage<Error>(HasSubstr(R"(coolant: unknown coolant 'oil' (use "off", "flood" or "mist"))")));
 }

@@ -4,6 +4,7 @@
 // lead-out in the posted order, and at every move each tool's shank and holder
 // must keep the clearance from it. Nothing of the planner's stock models
 // (Touched, HeightField) is used.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,14 +23,10 @@
 #include "testutil.hpp"
 
 using namespace plunge;
+using ::testing::HasSubstr;
+using ::testing::ThrowsMessage;
 
 namespace {
-
-// Whether `text` holds `part`; a failure prints both.
-::testing::AssertionResult Has(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "\"" << text << "\" does not contain \"" << part << "\"";
-}
 
 // The deep pocket of the issue that asked for holders: 150 x 90 x 70 mm, a
 // 20 x 20 mm island; a 20 mm plunger with 40 mm flutes held 60 mm from its
@@ -229,8 +226,8 @@ TEST(Holder, DeepPocketNoPostedMoveMeetsThePartOrTheStock) {
   // Beside a wall the face must stay above top_z + clearance, so the tip at
   // 61 mm above: 70.2 - 61 = 9.2 mm more stick-out reaches the floor there.
   EXPECT_NEAR(b->worst, 60.0 + 70.0 - 0.2 - 59.0 + 0.0, 0.05) << b->why;
-  EXPECT_TRUE(Has(b->why, "40.00 mm holder of tool 1"));
-  EXPECT_TRUE(Has(b->why, "a stick-out of"));
+  EXPECT_THAT(b->why, HasSubstr("40.00 mm holder of tool 1"));
+  EXPECT_THAT(b->why, HasSubstr("a stick-out of"));
   EXPECT_LT(test::bruteWallDistance({in.boundary, in.islands[0]}, b->at), 20.0 + 1.0 + 1e-6);
   // Every limited plunge stops above the floor: it is raised, never lowered.
   for (const Plunge& q : p.plunges) {
@@ -285,7 +282,7 @@ TEST(Holder, TheToolChoiceKeepsTheToolThatReaches) {
   // What is still said is the short 6 mm plunger's, in the corners only it fits.
   for (const BrokenLimit& b : p.broken) {
     if (b.limit == "stick_out") {
-      EXPECT_TRUE(Has(b.why, "of tool 3"));
+      EXPECT_THAT(b.why, HasSubstr("of tool 3"));
     }
   }
   ASSERT_TRUE(p.selection);
@@ -372,7 +369,7 @@ TEST(Holder, AnUnknownHolderIsAsWideAsThePocket) {
   EXPECT_EQ(replay(in, p).count, 0);
   const auto b = std::find_if(p.broken.begin(), p.broken.end(), [](const BrokenLimit& x) { return x.limit == "stick_out"; });
   ASSERT_NE(b, p.broken.end());
-  EXPECT_TRUE(Has(b->why, "its diameter not given"));
+  EXPECT_THAT(b->why, HasSubstr("its diameter not given"));
   EXPECT_NEAR(b->worst, 70.0 - 0.2 + 2.0, 1e-6);
 }
 
@@ -392,8 +389,8 @@ TEST(Holder, AWiderShankKeepsClear) {
   EXPECT_EQ(replay(in, p).count, 0);
   const auto b = std::find_if(p.broken.begin(), p.broken.end(), [](const BrokenLimit& x) { return x.limit == "stick_out"; });
   ASSERT_NE(b, p.broken.end());
-  EXPECT_TRUE(Has(b->why, "12.00 mm shank of tool 1"));
-  EXPECT_TRUE(Has(b->why, "flutes"));
+  EXPECT_THAT(b->why, HasSubstr("12.00 mm shank of tool 1"));
+  EXPECT_THAT(b->why, HasSubstr("flutes"));
 }
 
 // Read from JSON and written back; bad values named.
@@ -420,17 +417,11 @@ TEST(Holder, ReadFromTheInputAndRefusedWhenInconsistent) {
            {R"({"diameter": 16, "flute_length": 25, "stick_out": 20})", "shorter than its flute_length"},
            {R"({"diameter": 16, "stick_out": 40, "shank_diameter": 20})", "must say where the shank starts"},
        }) {
-    EXPECT_TRUE(Has(test::planError(planInputFromJson(base + bad.tool + "]}")), bad.message)) << bad.tool;
+    EXPECT_THAT(test::planError(planInputFromJson(base + bad.tool + "]}")), HasSubstr(bad.message)) << bad.tool;
   }
-  EXPECT_TRUE(Has([&] {
-    try {
-      planInputFromJson(base + R"({"diameter": 16, "stick_out": -4}]})");
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  }(), "stick_out must be > 0"));
+  EXPECT_THAT([&] { planInputFromJson(base + R"({"diameter": 16, "stick_out": -4}]})"); },
+              ThrowsMessage<Error>(HasSubstr("stick_out must be > 0")));
   PlanInput negative = planInputFromJson(base + R"({"diameter": 16}]})");
   negative.motion.holderClearance = -1.0;
-  EXPECT_TRUE(Has(test::planError(negative), "holder_clearance must be >= 0"));
+  EXPECT_THAT(test::planError(negative), HasSubstr("holder_clearance must be >= 0"));
 }

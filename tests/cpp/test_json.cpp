@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -15,6 +16,7 @@
 #include "testutil.hpp"
 
 using namespace plunge;
+using ::testing::HasSubstr;
 using nlohmann::json;
 
 namespace {
@@ -55,24 +57,21 @@ TEST(Json, ParsesTheContractExample) {
 }
 
 TEST(Json, BadInputNamesTheProblem) {
-  EXPECT_NE(parseError("{not json").find("invalid JSON"), std::string::npos);
-  EXPECT_NE(parseError("[1,2]").find("expected a JSON object"), std::string::npos);
-  EXPECT_NE(parseError(withChange("/boundary", json::value_t::discarded)).find("boundary: required"), std::string::npos);
-  EXPECT_NE(parseError(withChange("/boundary/1", json::array({1}))).find("boundary[1]"), std::string::npos);
-  EXPECT_NE(parseError(withChange("/boundary/1/0", "x")).find("boundary[1][0]: expected a number"), std::string::npos);
-  EXPECT_NE(parseError(withChange("/tools/0/diameter", 0)).find("diameter must be > 0"), std::string::npos);
-  EXPECT_NE(parseError(withChange("/tools/0/id", -2)).find("tools[0].id"), std::string::npos);
-  EXPECT_NE(parseError(withChange("/tools/0/colour", 1)).find("unknown key 'colour'"), std::string::npos);
-  EXPECT_NE(parseError(withChange("/allowances", 1)).find("unknown key 'allowances'"), std::string::npos);
-  EXPECT_NE(parseError(withChange("/floor", json::object({{"z", 1}, {"brep", "f"}}))).find("exactly one"),
-            std::string::npos);
-  EXPECT_NE(parseError(withChange("/floor", json::value_t::discarded)).find("floor: required"), std::string::npos);
-  EXPECT_NE(parseError(withChange("/version", 2)).find("version"), std::string::npos);
-  EXPECT_NE(parseError(withChange("/seed", -1)).find("seed"), std::string::npos);
-  EXPECT_NE(parseError(withChange("/islands/0", json::array({json::array({1, 1}), json::array({2, 2})})))
-                .find("island 1: needs at least 3 distinct points"),
-            std::string::npos);
-  EXPECT_NE(parseError(withChange("/islands/0/0", json::array({140, 20}))).find("island 1: crosses"), std::string::npos);
+  EXPECT_THAT(parseError("{not json"), HasSubstr("invalid JSON"));
+  EXPECT_THAT(parseError("[1,2]"), HasSubstr("expected a JSON object"));
+  EXPECT_THAT(parseError(withChange("/boundary", json::value_t::discarded)), HasSubstr("boundary: required"));
+  EXPECT_THAT(parseError(withChange("/boundary/1", json::array({1}))), HasSubstr("boundary[1]"));
+  EXPECT_THAT(parseError(withChange("/boundary/1/0", "x")), HasSubstr("boundary[1][0]: expected a number"));
+  EXPECT_THAT(parseError(withChange("/tools/0/diameter", 0)), HasSubstr("diameter must be > 0"));
+  EXPECT_THAT(parseError(withChange("/tools/0/id", -2)), HasSubstr("tools[0].id"));
+  EXPECT_THAT(parseError(withChange("/tools/0/colour", 1)), HasSubstr("unknown key 'colour'"));
+  EXPECT_THAT(parseError(withChange("/allowances", 1)), HasSubstr("unknown key 'allowances'"));
+  EXPECT_THAT(parseError(withChange("/floor", json::object({{"z", 1}, {"brep", "f"}}))), HasSubstr("exactly one"));
+  EXPECT_THAT(parseError(withChange("/floor", json::value_t::discarded)), HasSubstr("floor: required"));
+  EXPECT_THAT(parseError(withChange("/version", 2)), HasSubstr("version"));
+  EXPECT_THAT(parseError(withChange("/seed", -1)), HasSubstr("seed"));
+  EXPECT_THAT(parseError(withChange("/islands/0", json::array({json::array({1, 1}), json::array({2, 2})}))), HasSubstr("island 1: needs at least 3 distinct points"));
+  EXPECT_THAT(parseError(withChange("/islands/0/0", json::array({140, 20}))), HasSubstr("island 1: crosses"));
   EXPECT_EQ(parseError(base().dump()), "");
 }
 
@@ -128,12 +127,12 @@ TEST(Json, RelativePathsStartAtTheInputFilesFolder) {
   EXPECT_EQ(fs::path(resolveInputPath(rel, "floor.brep")), dir / "job" / "floor.brep");
   // Parsed from text there is no file: the current directory.
   EXPECT_EQ(resolveInputPath(planInputFromJson(j.dump()), "floor.brep"), "floor.brep");
-  EXPECT_NE(parseError(j.dump()).find("floor.brep"), std::string::npos);
+  EXPECT_THAT(parseError(j.dump()), HasSubstr("floor.brep"));
   try {
     readPlanInput((dir / "missing.json").string());
     ADD_FAILURE() << "a missing file was read";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot read"), std::string::npos);
+    EXPECT_THAT(e.what(), HasSubstr("cannot read"));
   }
   EXPECT_THROW(readPlanInput(dir.string()), Error);  // a folder
   fs::remove_all(dir);
@@ -173,5 +172,5 @@ TEST(Json, OldNoLimitSpellingsAreMigratedAndSaid) {
   EXPECT_EQ(migrated.warnings[0], "tools[0].max_engagement: 0 is read as no limit (leave the key out to say so)");
   EXPECT_EQ(migrated.warnings[1], "tools[1].flute_length: null is read as no limit (leave the key out to say so)");
   j["tools"][0]["max_engagement"] = -1;
-  EXPECT_NE(parseError(j.dump()).find("max_engagement must be > 0"), std::string::npos);
+  EXPECT_THAT(parseError(j.dump()), HasSubstr("max_engagement must be > 0"));
 }

@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <map>
@@ -15,6 +16,7 @@
 #include "testutil.hpp"
 
 using namespace plunge;
+using ::testing::HasSubstr;
 
 namespace {
 
@@ -297,7 +299,7 @@ TEST(Motion, SaysEveryLimitItBreaks) {
   EXPECT_EQ(plan.warnings.size(), plan.broken.size());
   for (size_t i = 0; i < plan.broken.size(); ++i) {
     EXPECT_FALSE(plan.broken[i].why.empty());
-    EXPECT_NE(plan.warnings[i].find("the worst at ("), std::string::npos) << plan.warnings[i];
-    EXPECT_NE(plan.warnings[i].find(plan.broken[i].why), std::string::npos);
+    EXPECT_THAT(plan.warnings[i], HasSubstr("the worst at (")) << plan.warnings[i];
+    EXPECT_THAT(plan.warnings[i], HasSubstr(plan.broken[i].why));
   }
 }

@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include "plunge/optimizer.hpp"
 
 using namespace plunge;
+using ::testing::HasSubstr;
 
 namespace {
 bool hasLocal(const OptimizeResult& r, std::vector<double> x, double tol = 1e-5) {
@@ -119,7 +121,7 @@ TEST(Optimizer, BadInput) {
     optimize([](const double* x) { return x[0] > 0.5 ? NAN : x[0]; }, {{0, 1}}, Goal::Minimize);
     FAIL();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("non-finite"), std::string::npos);
+    EXPECT_THAT(e.what(), HasSubstr("non-finite"));
   }
   // A callable that throws: its exception comes through untouched.
   EXPECT_THROW(optimize([](const double*) -> double { throw std::runtime_error("boom"); }, {{0, 1}}, Goal::Minimize),

@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +10,8 @@
 #include "testutil.hpp"
 
 using namespace plunge;
+using ::testing::HasSubstr;
+using ::testing::Not;
 
 namespace {
 
@@ -59,46 +62,46 @@ TEST(Plan, SameInputSamePlan) {
 TEST(Plan, RejectsBadNumbers) {
   PlanInput in = square();
   in.tools[0].diameter = -3;
-  EXPECT_NE(planError(in).find("diameter must be > 0"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("diameter must be > 0"));
   in = square();
   in.tools[0].diameter = NAN;
-  EXPECT_NE(planError(in).find("not a finite number"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("not a finite number"));
   in = square();
   in.tools.clear();
-  EXPECT_NE(planError(in).find("at least one tool"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("at least one tool"));
   in = square();
   in.tools[0].id = 1;
-  EXPECT_NE(planError(in).find("used twice"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("used twice"));
   in = square();
   in.safeZ = -1;
-  EXPECT_NE(planError(in).find("safe_z"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("safe_z"));
   in = square();
   in.floor.surface.z = 3;
-  EXPECT_NE(planError(in).find("below top_z"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("below top_z"));
   in = square();
   in.radialAllowance = -0.1;
-  EXPECT_NE(planError(in).find("allowance.radial"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("allowance.radial"));
   in = square();
   in.floorAllowance = INFINITY;
-  EXPECT_NE(planError(in).find("allowance.floor"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("allowance.floor"));
   in = square();
   in.packing.gridStep = 1.5;
-  EXPECT_NE(planError(in).find("grid.step must be 0"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("grid.step must be 0"));
   in = square();
   in.tools[0].id = kMaxToolId + 1;  // io refuses it too; validate() for callers of the library
-  EXPECT_NE(planError(in).find("tools[0].id must be a positive integer"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("tools[0].id must be a positive integer"));
   in = square();
   in.covering.minCoverage = 1.5;
-  EXPECT_NE(planError(in).find("min_coverage"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("min_coverage"));
 }
 
 TEST(Plan, NoToolFits) {
   PlanInput in = square();
   in.tools = {{100, 1, 100}, {90, 2, 100}};
-  EXPECT_NE(planError(in).find("no tool fits"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("no tool fits"));
   in = square();
   in.radialAllowance = 39;  // 80 mm wide pocket, 10 mm tool, 2 x 39 mm allowance
-  EXPECT_NE(planError(in).find("no tool fits"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("no tool fits"));
 }
 
 TEST(Plan, ToolThatFitsNowhereGetsNoPlunge) {
@@ -184,16 +187,16 @@ TEST(Plan, ASmallSecondToolDoesNotTakeOver) {
 TEST(Plan, BandWiderThanThePocketIsAnError) {
   PlanInput in = square();
   in.covering.maxWallStock = 45;  // the square is 80 mm wide
-  EXPECT_NE(planError(in).find("max_wall_stock"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("max_wall_stock"));
   in.covering.maxWallStock = 1e5;  // wider than the pocket, within the limits
-  EXPECT_NE(planError(in).find("is the whole pocket"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("is the whole pocket"));
   in.covering.maxWallStock = 1e308;  // beyond any polygon offset: a length no machine has (limits.hpp)
-  EXPECT_NE(planError(in).find("max_wall_stock 1.000e+308 mm is beyond"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("max_wall_stock 1.000e+308 mm is beyond"));
   in.covering.maxWallStock = -1;
-  EXPECT_NE(planError(in).find("max_wall_stock must be >= 0"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("max_wall_stock must be >= 0"));
   in.covering.maxWallStock = 1;
   in.floor.maxFloorStock = NAN;
-  EXPECT_NE(planError(in).find("max_floor_stock"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("max_floor_stock"));
 }
 
 INSTANTIATE_TEST_SUITE_P(TestShapes, Shapes, ::testing::Values("convex", "concave", "islands", "freeform", "neck"));
@@ -213,16 +216,16 @@ TEST(Plan, CoverageShortfallIsAWarning) {
   in.covering.minCoverage = 1.0;  // wall cusps always remain
   const Plan short_ = plan(in);
   ASSERT_EQ(short_.warnings.size(), 1u);
-  EXPECT_NE(short_.warnings[0].find("less than the 100.00 % asked for"), std::string::npos);
-  EXPECT_EQ(short_.warnings[0].find("min_coverage"), std::string::npos);  // no internal key names
-  EXPECT_NE(planToJson(short_).find("\"warnings\""), std::string::npos);
+  EXPECT_THAT(short_.warnings[0], HasSubstr("less than the 100.00 % asked for"));
+  EXPECT_THAT(short_.warnings[0], Not(HasSubstr("min_coverage")));  // no internal key names
+  EXPECT_THAT(planToJson(short_), HasSubstr("\"warnings\""));
   // The grid baseline short of the target warns the same way.
   in.covering.minCoverage = 0.996;
   in.packing.strategy = Strategy::Grid;
   const Plan grid = plan(in);
   ASSERT_LT(grid.stats.coverage, in.covering.minCoverage);
   ASSERT_EQ(grid.warnings.size(), 1u);
-  EXPECT_NE(grid.warnings[0].find("grid"), std::string::npos);
+  EXPECT_THAT(grid.warnings[0], HasSubstr("grid"));
 }
 
 TEST(Plan, NoPlungeStopsBelowTheFinalDepth) {
@@ -245,7 +248,7 @@ TEST(Plan, NoPlungeStopsBelowTheFinalDepth) {
   const auto why = std::find_if(p.warnings.begin(), p.warnings.end(),
                                 [](const std::string& w) { return w.find("stay above the floor") != std::string::npos; });
   ASSERT_NE(why, p.warnings.end());
-  EXPECT_NE(why->find("the final depth stops plunges"), std::string::npos) << *why;
+  EXPECT_THAT(*why, HasSubstr("the final depth stops plunges"));
   // Plunges over the floor above it keep their own stop heights.
   in.floor.finalDepth.reset();
   const Plan free = plan(in);
@@ -253,5 +256,5 @@ TEST(Plan, NoPlungeStopsBelowTheFinalDepth) {
   for (size_t i = 0; i < p.plunges.size(); ++i)
     EXPECT_EQ(p.plunges[i].z, std::max(free.plunges[i].z, -8.0 + in.floorAllowance));
   in.floor.finalDepth = 1.0;
-  EXPECT_NE(planError(in).find("final_depth"), std::string::npos);
+  EXPECT_THAT(planError(in), HasSubstr("final_depth"));
 }

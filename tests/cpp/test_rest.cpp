@@ -1,6 +1,7 @@
 // Rest plunging (rest.hpp, material.hpp): the sweep of earlier moves against
 // brute force, and plans that start from the material the operations before
 // left.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include "testutil.hpp"
 
 using namespace plunge;
+using ::testing::HasSubstr;
 
 namespace {
 
@@ -162,7 +164,7 @@ TEST(RestPlan, RefusesABadGrid) {
   EXPECT_NE(test::planError(in), "");
   in = pocketAfter(1.0);
   in.material->top[5] = NAN;
-  EXPECT_NE(test::planError(in).find("material"), std::string::npos);
+  EXPECT_THAT(test::planError(in), HasSubstr("material"));
 }
 
 // A plunge mill with an engagement limit after the left half of the pocket

@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include "testutil.hpp"
 
 using namespace plunge;
+using ::testing::HasSubstr;
 
 namespace {
 
@@ -168,8 +170,8 @@ TEST(Selection, LeavesOutAToolThatCostsMoreThanItSaves) {
   for (Tool& t : all.tools) t.feed = 1200.0;
   EXPECT_LT(p.stats.estimatedMinutes, plan(all).stats.estimatedMinutes);
   const std::string summary = planSummary(p);
-  EXPECT_NE(summary.find("left out"), std::string::npos) << summary;
-  EXPECT_NE(summary.find("saves about"), std::string::npos) << summary;
+  EXPECT_THAT(summary, HasSubstr("left out")) << summary;
+  EXPECT_THAT(summary, HasSubstr("saves about")) << summary;
 }
 
 TEST(Selection, WeightOnToolCountPrefersFewerTools) {
@@ -208,7 +210,7 @@ TEST(Selection, SetsThatCannotBePlannedAreSkippedWithTheirReason) {
     if (!r.refused.empty()) {
       ++refused;
       EXPECT_FALSE(r.evaluated);
-      EXPECT_NE(r.refused.find("does not cut at its centre"), std::string::npos) << r.refused;
+      EXPECT_THAT(r.refused, HasSubstr("does not cut at its centre")) << r.refused;
       EXPECT_NE(std::find(r.diameters.begin(), r.diameters.end(), 20.0), r.diameters.end());
       EXPECT_EQ(std::find(r.diameters.begin(), r.diameters.end(), 10.0), r.diameters.end());
     }
@@ -225,7 +227,7 @@ TEST(Selection, SetsThatCannotBePlannedAreSkippedWithTheirReason) {
     FAIL() << "planned without a centre-cutting tool";
   } catch (const Error& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("does not cut at its centre"), std::string::npos) << what;
+    EXPECT_THAT(what, HasSubstr("does not cut at its centre")) << what;
   }
 }
 
@@ -239,6 +241,6 @@ TEST(Selection, BadLibrary) {
     plan(in);
     FAIL();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("tool_library[1]"), std::string::npos) << e.what();
+    EXPECT_THAT(e.what(), HasSubstr("tool_library[1]")) << e.what();
   }
 }

@@ -1,5 +1,6 @@
 // The plan's pictures (svg.hpp): one view per question.
 #include <algorithm>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -12,6 +13,8 @@
 #include "testutil.hpp"
 
 using namespace plunge;
+using ::testing::HasSubstr;
+using ::testing::Not;
 
 namespace {
 
@@ -49,8 +52,8 @@ TEST(Svg, PlanViewDrawsEveryPlungeItsToursAndALegend) {
   size_t tours = 0;
   for (size_t at = svg.find("<polyline"); at != std::string::npos; at = svg.find("<polyline", at + 1)) ++tours;
   EXPECT_GE(tours, p.stats.perTool.size());
-  EXPECT_NE(svg.find("T4"), std::string::npos);
-  EXPECT_EQ(svg.find("stop height"), std::string::npos);  // not this view's question
+  EXPECT_THAT(svg, HasSubstr("T4"));
+  EXPECT_THAT(svg, Not(HasSubstr("stop height")));  // not this view's question
   EXPECT_EQ(svg.rfind("</svg>"), svg.size() - 7);
 }
 
@@ -61,15 +64,15 @@ TEST(Svg, StockViewShowsWhatIsLeftAndEveryBrokenLimit) {
   const Plan p = plan(in);
   const std::string svg = planToSvg(in, p, SvgView::Stock);
   ASSERT_FALSE(p.uncovered.empty());
-  EXPECT_NE(svg.find("fill=\"#e00000\""), std::string::npos);  // what the disks leave, in red
-  EXPECT_EQ(svg.find("<polyline"), std::string::npos);        // no tour here
+  EXPECT_THAT(svg, HasSubstr("fill=\"#e00000\""));  // what the disks leave, in red
+  EXPECT_THAT(svg, Not(HasSubstr("<polyline")));        // no tour here
   const std::vector<std::string> cs = circles(svg);
   for (const Plunge& q : p.plunges) EXPECT_EQ(count(cs, diskOf(q)), 1u) << diskOf(q);  // faint outlines
   for (size_t k = 0; k < p.broken.size() && k < 6; ++k) {
-    EXPECT_NE(svg.find(std::to_string(k + 1) + ": " + p.broken[k].limit + " broken"), std::string::npos);
+    EXPECT_THAT(svg, HasSubstr(std::to_string(k + 1) + ": " + p.broken[k].limit + " broken"));
   }
   if (p.broken.empty()) {
-    EXPECT_NE(svg.find("every limit kept"), std::string::npos);
+    EXPECT_THAT(svg, HasSubstr("every limit kept"));
   }
 }
 
@@ -107,16 +110,16 @@ TEST(Svg, PlanViewShowsTheMaterialBeforeAsItsBackground) {
     for (size_t i = 20; i < 60; ++i) in.material->top[j * 160 + i] = in.topZ;  // 0 < x < 40: untouched
   const Plan p = plan(in);
   const std::string svg = planToSvg(in, p, SvgView::Plan);
-  EXPECT_NE(svg.find("material before it"), std::string::npos);
+  EXPECT_THAT(svg, HasSubstr("material before it"));
   const std::string dark = "fill=\"rgb(160,145,120)\"";
-  EXPECT_NE(svg.find(dark), std::string::npos);  // the untouched third
+  EXPECT_THAT(svg, HasSubstr(dark));  // the untouched third
   // Nothing drawn outside the pocket: no block starts left of its wall.
   for (size_t at = svg.find(dark); at != std::string::npos; at = svg.find(dark, at + 1)) {
     const size_t x = svg.rfind("<rect x=\"", at);
     EXPECT_GE(std::stod(svg.substr(x + 9)), -1e-9);
   }
   in.material.reset();
-  EXPECT_EQ(planToSvg(in, plan(in), SvgView::Plan).find("material before it"), std::string::npos);
+  EXPECT_THAT(planToSvg(in, plan(in), SvgView::Plan), Not(HasSubstr("material before it")));
 }
 
 // A holder that stops plunges: the stop heights are drawn over a flat floor
@@ -141,5 +144,5 @@ TEST(Svg, HeightsMarkThePlungesAHolderStopped) {
   for (size_t at = svg.find("stroke=\"#e00000\""); at != std::string::npos; at = svg.find("stroke=\"#e00000\"", at + 1))
     ++rings;
   EXPECT_EQ(rings, held);
-  EXPECT_NE(svg.find(std::to_string(held) + " plunges stopped above their depth by the holder"), std::string::npos) << svg;
+  EXPECT_THAT(svg, HasSubstr(std::to_string(held) + " plunges stopped above their depth by the holder")) << svg;
 }

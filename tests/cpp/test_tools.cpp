@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,6 +7,7 @@
 #include "plunge/tools.hpp"
 
 using namespace plunge;
+using ::testing::HasSubstr;
 
 TEST(Tools, EngagementLimitFromTheCore) {
   Tool t{25, 1, 100};
@@ -54,6 +56,6 @@ TEST(Tools, AnUnknownIdIsAnInternalError) {
   } catch (const Error&) {
     FAIL() << "an internal fault reported as bad input";
   } catch (const InternalError& e) {
-    EXPECT_NE(std::string(e.what()).find("tool 5"), std::string::npos) << e.what();
+    EXPECT_THAT(e.what(), HasSubstr("tool 5")) << e.what();
   }
 }

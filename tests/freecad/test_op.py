@@ -108,7 +108,7 @@ def test_sculptured_floor_and_freeform_walls(doc):
         assert z - 0.3 - highest < 0.01, (tc.Label, x, y, z, highest)
         assert z - 0.3 - highest > -1e-6, (tc.Label, x, y, z, highest)
     # The demo part with the demo's plungers: no floor stock above the default 1 mm.
-    assert plan["stats"]["rest_plunges"] > 0 and plan["stats"]["max_floor_stock_left"] <= 1.0
+    assert plan["stats"]["floor_stock_plunges"] > 0 and plan["stats"]["max_floor_stock_left"] <= 1.0
     assert not any("stock stay above the floor" in w for w in plan.get("warnings", []))
     assert "floor up to 0." in op.Summary
 

@@ -120,7 +120,7 @@ def check_job(job, op, tcs, levels):
         face = next(model.getElement(n) for n in faces_at(model, z) if n in op.Base[0][1]
                     or not op.Base[0][1])
         seeds.append((face.CenterOfMass.x, face.CenterOfMass.y))
-    # The floor stock asked for, or without the rest step in Z what the plan
+    # The floor stock asked for, or without the floor-stock step what the plan
     # says it leaves: either way the G-code must leave no more.
     limit = op.MaxFloorStock.Value or plan["stats"]["max_floor_stock_left"] + 0.01
     report = check(model, job.Stock.Shape.BoundBox.ZMax, text, {int(tc.ToolNumber): float(tc.Tool.Diameter)

@@ -85,7 +85,7 @@ def test_brep_floor_through_the_cli(cli, tmp_path):
     assert plan["stats"]["core_coverage"] > 0.99999
     # The default 1 mm floor stock limit, or the warning that the 6 mm plunger cannot reach it.
     stats = plan["stats"]
-    assert stats["rest_plunges"] > 0
+    assert stats["floor_stock_plunges"] > 0
     assert stats["max_floor_stock_left"] <= 1.0 + 1e-9 or any(
         "stock stay above the floor" in w for w in plan.get("warnings", []))
 

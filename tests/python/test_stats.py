@@ -2,7 +2,7 @@
 plan's own plunges: coverage and the core with shapely (GEOS, not the planner's
 Clipper polygons), the wall stock from the uncovered pieces' vertices, the
 floor stock and the volumes on a fine numpy raster of the floor function (not
-the planner's stock samples), plunge counts by counting. Plans with a rest step
+the planner's stock samples), plunge counts by counting. Plans with a floor-stock step
 in Z, engagement limits (grown plunges), levels, ball and bull tools and the grid."""
 import json
 import math
@@ -39,7 +39,7 @@ def shaped(data):
 
 CASES = {
     "flat example": lambda: example("pocket"),
-    "sculptured example (rest step)": lambda: example("sculptured"),
+    "sculptured example (floor-stock step)": lambda: example("sculptured"),
     "sculptured example at 0.25 D": lambda: limited(example("sculptured"), 0.25),
     "islands at 0.5 D": lambda: limited(load_shape("islands"), 0.5),
     "bull and ball with levels": lambda: shaped(example("pocket")),
@@ -174,20 +174,22 @@ def test_the_mean_floor_stock_between_the_samples(planned):
     assert plan["stats"]["mean_floor_stock"] == pytest.approx(stock.mean(), abs=0.01)
 
 
-def test_rest_plunges_are_the_plunges_the_floor_stock_added(planned, plunge):
-    """Without engagement limits the rest step only adds: the plan without it
-    has the same plunges less the rest plunges (one per position with levels).
-    With limits every tool grows its own plunges and none is the rest step's."""
+def test_floor_stock_plunges_are_the_plunges_the_floor_stock_added(planned, plunge):
+    """Without engagement limits the floor-stock step only adds: the plan without it
+    has the same plunges less the floor-stock plunges (one per position with
+    levels). With limits every tool grows its own plunges and none is the
+    floor-stock step's. Their old key, rest_plunges, still says the same."""
     data, plan = planned
     s = plan["stats"]
+    assert s["rest_plunges"] == s["floor_stock_plunges"]
     first = [p for p in plan["plunges"] if p.get("level", 0) == 0]
     if any("max_engagement" in t for t in data["tools"]):
         if all("max_engagement" in t for t in data["tools"]):
-            assert s["rest_plunges"] == 0
+            assert s["floor_stock_plunges"] == 0
         return
     plain = plunge.plan(dict(data, max_floor_stock=0))
-    assert plain["stats"]["rest_plunges"] == 0
-    assert len(first) == sum(p.get("level", 0) == 0 for p in plain["plunges"]) + s["rest_plunges"]
+    assert plain["stats"]["floor_stock_plunges"] == 0
+    assert len(first) == sum(p.get("level", 0) == 0 for p in plain["plunges"]) + s["floor_stock_plunges"]
 
 
 def test_times_are_the_plans_moves(planned):

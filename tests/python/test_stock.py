@@ -131,12 +131,12 @@ def test_no_point_of_a_sculptured_floor_keeps_more_than_the_limit(plunge, expres
     assert stock.min() > -1e-6, "a plunge into the floor"
     assert stock.max() <= limit + 1e-6, stock.max()
     stats = plan["stats"]
-    assert stats["rest_plunges"] > 0 and stats["max_floor_stock_left"] <= limit
+    assert stats["floor_stock_plunges"] > 0 and stats["max_floor_stock_left"] <= limit
     assert stats["volume_left"] > 0 and stats["volume_removed"] > 0
     assert not any("stock stay above the floor" in w for w in plan.get("warnings", []))
-    # Without the rest step the steps stay: the limit is what made the difference.
+    # Without the floor-stock step the steps stay: the limit is what made the difference.
     plain = plunge.plan(dict(data, max_floor_stock=0))
-    assert plain["stats"]["rest_plunges"] == 0
+    assert plain["stats"]["floor_stock_plunges"] == 0
     assert floor_stock(data, plain).max() > limit
 
 
@@ -160,4 +160,4 @@ def test_flat_floor_volumes_add_up(plunge):
     assert stats["volume_removed"] + stats["volume_left"] == pytest.approx(pocket.area * depth, rel=0.02)
     assert stats["volume_removed"] == pytest.approx(stats["covered_area"] * depth, rel=0.02)
     assert stats["max_floor_stock_left"] == pytest.approx(0.0, abs=1e-9)
-    assert stats["rest_plunges"] == 0
+    assert stats["floor_stock_plunges"] == 0

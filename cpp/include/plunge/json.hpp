@@ -28,6 +28,7 @@ PackingOrder packingOrderFromName(const std::string& name);  // "packing_order"
 GrowthPattern growthPatternFromName(const std::string& name);  // "growth_pattern"
 TourMethod tourMethodFromName(const std::string& name);      // "sequencing"
 GridPattern gridPatternFromName(const std::string& name);    // "grid": {"pattern"}
+Coolant coolantFromName(const std::string& name);            // "coolant"
 
 // The plan: plunges, statistics, warnings, the tool choice (docs/plan-schema.json).
 std::string planToJson(const Plan& plan);

@@ -12,7 +12,7 @@ namespace plunge {
 Plan plan(PlanInput input, const Progress& progress = Progress());
 
 // The plan of a validated input with its tools given (tools, not "auto"):
-// region, packing and covering (or the grid), depths, rest step, sequencing,
+// region, packing and covering (or the grid), depths, floor-stock step, sequencing,
 // engagement limits, levels, motion and the stock left.
 Plan planWithTools(PlanInput input, const Progress& progress = Progress());
 

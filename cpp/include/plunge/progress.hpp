@@ -6,6 +6,7 @@
 #include <functional>
 #include <future>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
@@ -13,11 +14,12 @@
 
 namespace plunge {
 
-// Thrown where a cancelled plan stops; a plunge::Error, so every front end
-// reports it as it reports bad input ("planning cancelled").
-class Cancelled : public Error {
+// Thrown where a cancelled plan stops. Not a plunge::Error: the input is not
+// at fault, and a stage that catches Error to mean "no floor here" lets it
+// pass. Python sees a ValueError ("planning cancelled"), as for every stop.
+class Cancelled : public std::runtime_error {
  public:
-  Cancelled() : Error("planning cancelled") {}
+  Cancelled() : std::runtime_error("planning cancelled") {}
 };
 
 class Progress {

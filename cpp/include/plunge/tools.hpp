@@ -18,6 +18,11 @@ double coreRadius(const Tool& tool);
 // How deep one peck of a hole into solid goes: the tool's own, or three
 // diameters (beyond that, makers advise chip-clearing retracts).
 double peckDepthOf(const Tool& tool);
+// The cutting speed of a tool with no spindle_speed, m/min: carbide in a
+// plain steel, near the low end of makers' tables (docs/feeds-and-speeds.md).
+constexpr double kDefaultCuttingSpeed = 100.0;
+// Its spindle speed in rev/min: its own, or kDefaultCuttingSpeed's, rounded.
+double spindleSpeedOf(const Tool& tool);
 // The band a tool may cut in one plunge, from its limit and core (infinite when free).
 double engagementLimit(const Tool& tool);
 // The centre-cutting tool that drills start holes for `tool`: the smallest one

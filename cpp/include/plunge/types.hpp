@@ -28,6 +28,9 @@ struct Tool {
   double diameter = 0.0;
   int id = 0;             // tool number in G-code
   double feed = 200.0;    // plunge feed, mm/min
+  // "spindle_speed": rev/min, written as S (G-code only; absent: from
+  // kDefaultCuttingSpeed, tools.hpp spindleSpeedOf).
+  std::optional<double> spindleSpeed = std::nullopt;
   CutterShape shape = CutterShape::Flat;
   double cornerRadius = 0.0;  // bull nose only
   // A real plunge mill (engagement.hpp, motion.hpp); no limit is an absent value.
@@ -162,6 +165,9 @@ struct EngagementSettings {
 // still there and retract only as high as the next move needs; false: every
 // move at safe_z. "peck": holes into solid deeper than their tool's peck
 // depth are pecked; "peck_dwell": seconds at the bottom of each.
+// "coolant": "off", "flood" (M8) or "mist" (M7), on with the spindle.
+enum class Coolant { Off, Flood, Mist };
+
 struct MotionSettings {
   double leadOut = 0.5;
   bool stockAwareHeights = true;
@@ -172,6 +178,7 @@ struct MotionSettings {
   TourMethod sequencing = TourMethod::LocalSearch;  // "sequencing": or "annealing" (the thesis)
   std::optional<Vec2> start;  // "start": where the machine starts (default: first boundary point)
   TimeModel timeModel;        // "time_model": {"rapid_rate", "retract_rate", "tool_change_seconds"}
+  Coolant coolant = Coolant::Off;  // "coolant": written with the spindle (G-code only)
 };
 
 // The floor and what stays on it (floor.hpp, stock.hpp). "max_floor_stock",
@@ -262,7 +269,7 @@ struct Plunge {
   // (above z, deepest last) where the tool stops, rapids up out of the hole to
   // clear the chips and rapids back to just above that depth (motion.hpp).
   std::vector<double> pecks;
-  bool rest = false;        // added by the rest step in Z (stats.rest_plunges; not in the JSON)
+  bool forFloorStock = false;  // added by the floor-stock step (stats.floor_stock_plunges; not in the JSON)
   bool holderLimited = false;  // stopped above its depth where the holder or shank clears (holder.hpp)
 };
 
@@ -304,7 +311,7 @@ struct PlanStats {
   double volumeBefore = 0.0;  // mm^3
   int airPlunges = 0;
   bool restMaterial = false;  // planned from a "material" input
-  int restPlunges = 0;         // plunges of the plan the rest step in Z added (a limited tool's growth replaces them)
+  int floorStockPlunges = 0;  // plunges of the plan the floor-stock step added (a limited tool's growth replaces them)
   // Real plunge mills (engagement.hpp, motion.hpp).
   int startHoles = 0;           // start holes drilled for non-centre-cutting plungers
   int overEngaged = 0;          // plunges (not starts) cutting wider than their tool's max_engagement
