@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../fuzz/oracle.hpp"
 #include "plunge/error.hpp"
 #include "plunge/geometry.hpp"
 #include "plunge/plan.hpp"
@@ -42,11 +43,15 @@ inline Loop circleLoop(Vec2 c, double r, int n) {
   return out;
 }
 
-// Brute force: distance from p to the nearest wall of the loops.
+// Brute force: distance from p to the nearest wall of the loops (the fuzz
+// oracle's segment distance, not the planner's).
 inline double bruteWallDistance(const std::vector<Loop>& loops, Vec2 p) {
   double best = INFINITY;
   for (const Loop& L : loops)
-    for (size_t i = 0; i < L.size(); ++i) best = std::min(best, distanceToSegment({L[i], L[(i + 1) % L.size()]}, p));
+    for (size_t i = 0; i < L.size(); ++i) {
+      const Vec2 a = L[i], b = L[(i + 1) % L.size()];
+      best = std::min(best, plunge_oracle::segmentDistance({p.x, p.y}, {a.x, a.y}, {b.x, b.y}));
+    }
   return best;
 }
 

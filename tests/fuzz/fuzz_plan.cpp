@@ -2,7 +2,8 @@
 // replay_main.cpp in the normal test run). Bad input must end in a
 // plunge::Error; anything else is a bug: a crash, a sanitizer report, another
 // exception, a run past libFuzzer's -timeout or -rss_limit_mb, or a plan with a
-// plunge that gouges a wall or island.
+// plunge that gouges a wall, an island or a flat floor, as judged by oracle.hpp
+// from the input text alone (none of the planner's code).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -12,7 +13,7 @@
 #include "plunge/error.hpp"
 #include "plunge/json.hpp"
 #include "plunge/plan.hpp"
-#include "region.hpp"
+#include "oracle.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
@@ -24,11 +25,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const plunge::Error&) {
     return 0;  // refused with a message: fine
   }
-  const plunge::Region walls(in.boundary, in.islands);
+  const plunge_oracle::Pocket pocket(text);
   for (const plunge::Plunge& p : plan.plunges) {
-    const plunge::Vec2 c{p.x, p.y};
-    if (!walls.contains(c) || walls.wallDistance(c, p.diameter) < 0.5 * p.diameter + in.radialAllowance - 1e-6) {
-      std::fprintf(stderr, "gouge: plunge of %g mm at (%.9g, %.9g)\n", p.diameter, p.x, p.y);
+    const std::string why = pocket.gouge({p.x, p.y}, p.diameter, p.z);
+    if (!why.empty()) {
+      std::fprintf(stderr, "gouge: %s\n", why.c_str());
       std::abort();
     }
   }
