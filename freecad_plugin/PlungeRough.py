@@ -10,15 +10,11 @@ plunges with that tool.
 
 This module never imports GUI code: it runs headless (freecadcmd).
 """
-import json
-import os
-import tempfile
-
 import FreeCAD
-import Part
 from PySide.QtCore import QT_TRANSLATE_NOOP
 
-from freecad_plugin import companions, geometry, planner, rest, tools
+from freecad_plugin import companions, geometry, operation_input, plan_files, planner, rest, tools
+from freecad_plugin.plan_input import DEFAULTS, GROWTH_PATTERNS, STRATEGIES
 from freecad_plugin.compat import PathFeedRate, PathJob, PathOp, PathUtils
 
 __title__ = "Plunge Rough operation"
@@ -32,26 +28,6 @@ SETUP_PROPERTIES = ["IncludeFillets", "RadialAllowance", "FloorAllowance", "Chor
                     "MinCoverage", "AutoSelectTools", "Strategy", "MaxWallStock", "MaxFloorStock", "LeadOut",
                     "StockAwareHeights", "MaxEngagement", "MinEngagement", "ToolChangeTime", "GrowthPattern",
                     "StickOut", "HolderDiameter", "HolderClearance"]
-
-# GrowthPattern property values -> the planner's "growth_pattern".
-GROWTH_PATTERNS = {"Auto": "auto", "Rows": "rows", "Offsets": "offsets"}
-
-# Strategy property values -> the planner's "strategy" and "grid" input.
-STRATEGIES = {
-    "Packing": {},
-    "Grid (honeycomb)": {"strategy": "grid", "grid": {"pattern": "honeycomb"}},
-    "Grid (square)": {"strategy": "grid", "grid": {"pattern": "square"}},
-}
-
-
-def mount_of(obj):
-    """The operation's stick-out, holder diameter and holder clearance in mm
-    (files from before them: none known, 1 mm)."""
-    def mm(name, default):
-        value = getattr(obj, name, None)
-        return float(value.Value) if value is not None else default
-    return mm("StickOut", 0.0), mm("HolderDiameter", 0.0), mm("HolderClearance", 1.0)
-
 
 def SetupProperties():
     return list(SETUP_PROPERTIES)
@@ -129,32 +105,38 @@ class ObjectPlungeRough(PathOp.ObjectOp):
              "All plunger tool controllers to use; the largest one is this operation's own")
         _add(obj, "App::PropertyBool", "IncludeFillets",
              "The fillets between the selected floor and its walls belong to the floor: roughed as floor, up to "
-             "the walls above them", True)
-        _add(obj, "App::PropertyDistance", "RadialAllowance", "Material left on the walls and islands", 0.0)
-        _add(obj, "App::PropertyDistance", "FloorAllowance", "Material left above the floor", 0.0)
+             "the walls above them", DEFAULTS["include_fillets"])
+        _add(obj, "App::PropertyDistance", "RadialAllowance",
+             "Material left on the walls and islands (default 0: set what the finishing pass needs)",
+             DEFAULTS["radial_allowance"])
+        _add(obj, "App::PropertyDistance", "FloorAllowance",
+             "Material left above the floor (default 0: set what the finishing pass needs)",
+             DEFAULTS["floor_allowance"])
         _add(obj, "App::PropertyLength", "ChordTolerance",
-             "Largest deviation when free-form walls become polylines (added to the radial allowance)", 0.01)
+             "Largest deviation when free-form walls become polylines (added to the radial allowance)",
+             DEFAULTS["chord_tolerance"])
         _add(obj, "App::PropertyBool", "UseCannedCycle", "Plunge with G81 (G83 when pecking) instead of G1 moves",
-             False)
+             DEFAULTS["canned_cycle"])
         _add(obj, "App::PropertyBool", "PeckEnabled",
              "Peck the holes drilled into solid that are deeper than Peck Depth (G83 with canned cycles); crescent "
-             "plunges beside removed material are never pecked", True)
+             "plunges beside removed material are never pecked", DEFAULTS["peck"])
         _add(obj, "App::PropertyLength", "PeckDepth",
-             "Depth of one peck into solid; 0 = three diameters of each plunger", 0.0)
+             "Depth of one peck into solid; 0 = three diameters of each plunger", DEFAULTS["peck_depth"])
         _add(obj, "App::PropertyFloat", "DwellTime",
-             "Seconds at the bottom of each pecked hole (explicit moves only; 0: none)", 0.0)
+             "Seconds at the bottom of each pecked hole (explicit moves only; 0: none)", DEFAULTS["dwell"])
         _add(obj, "App::PropertyLength", "MaxWallStock",
              "Thickest material the plunges may leave along walls and islands, beyond the radial allowance "
-             "(wall rows spaced for it; 0: clear Min Coverage of the reachable floor instead)", 1.0)
+             "(wall rows spaced for it; 0: clear Min Coverage of the reachable floor instead)",
+             DEFAULTS["max_wall_stock"])
         _add(obj, "App::PropertyLength", "MaxFloorStock",
              "Highest stock a sculptured floor may keep above floor + allowance: more plunges where it would "
-             "(0: none added)", 1.0)
+             "(0: none added)", DEFAULTS["max_floor_stock"])
         _add(obj, "App::PropertyLength", "LeadOut",
              "After reaching depth, feed this far sideways toward cleared space before retracting (explicit moves "
-             "only; 0: straight up)", 0.5)
+             "only; 0: straight up)", DEFAULTS["lead_out"])
         _add(obj, "App::PropertyBool", "StockAwareHeights",
              "Rapid down to 1 mm above the stock still under each plunge and retract only as high as the next move "
-             "needs (explicit moves only); off: every rapid at the safe height", True)
+             "needs (explicit moves only); off: every rapid at the safe height", DEFAULTS["stock_aware_heights"])
         _add(obj, "App::PropertyFloat", "MaxEngagement",
              "Widest radial band one plunge may cut, % of each plunger's diameter (100: unlimited); a bit's own "
              "MaxEngagement property wins", 100.0)
@@ -162,13 +144,14 @@ class ObjectPlungeRough(PathOp.ObjectOp):
              "Narrowest band a plunge should cut, % of the diameter (0: no limit); a bit's own MinEngagement "
              "property wins", 0.0)
         _add(obj, "App::PropertyFloat", "MinCoverage",
-             "With Max Wall Stock 0: percentage of the reachable floor the plunges must clear", 99.6)
+             "With Max Wall Stock 0: percentage of the reachable floor the plunges must clear",
+             DEFAULTS["min_coverage"])
         _add(obj, "App::PropertyBool", "AutoSelectTools",
              "Let the planner choose which of the plungers to use (shortest estimated time, tool changes "
-             "included); the others stay idle. Off: every plunger cuts", True)
+             "included); the others stay idle. Off: every plunger cuts", DEFAULTS["auto_select"])
         _add(obj, "App::PropertyFloat", "ToolChangeTime",
              "Seconds one tool change takes on the machine: the automatic tool choice weighs it against the "
-             "minutes a plunger saves", 20.0)
+             "minutes a plunger saves", DEFAULTS["tool_change_time"])
         # What holds the plungers (the planner's holder.hpp), for bits that do not carry their own.
         _add(obj, "App::PropertyLength", "StickOut",
              "Length from each plunger's tip to its holder's face (0: not known, holders not checked); a bit's own "
@@ -177,7 +160,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
              "Diameter of the holders, kept clear of the part and the standing material with the Stick Out (0: not "
              "known, taken as wide as the pocket); a bit's own HolderDiameter property wins", 0.0)
         _add(obj, "App::PropertyLength", "HolderClearance",
-             "What holders and shanks keep from the part and the standing material", 1.0)
+             "What holders and shanks keep from the part and the standing material", DEFAULTS["holder_clearance"])
         if not hasattr(obj, "GrowthPattern"):
             _add(obj, "App::PropertyEnumeration", "GrowthPattern",
                  "With a Max Engagement: how the cut grows from its starts, along rows, along offsets of the walls, "
@@ -275,7 +258,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
         obj.PlanData = ""
         tcs = companions.tool_controllers(obj)
         try:
-            faces = selected_faces(obj, tcs)
+            faces = operation_input.selected_faces(obj, tcs)
         except ValueError as e:
             _report(obj, str(e))
             return
@@ -283,17 +266,17 @@ class ObjectPlungeRough(PathOp.ObjectOp):
             obj.Summary = translate("PlungeRough", "select the pocket's floor face")
             return
         rest.link_sources(obj, PathUtils.findParentJob(obj))
-        workdir = plan_folder(obj)
+        workdir = plan_files.plan_folder(obj)
         notes = []
         try:
             plunger = planner.planner()
-            data = build_input(obj, tcs, faces, workdir, notes, plunger.floors)
+            data = operation_input.build_input(obj, tcs, faces, workdir, notes, plunger.floors)
             progress = planner.PlanProgress(obj.Label)
             try:
                 plan = plunger.plan(data, svg=True, progress=progress)
             finally:
                 progress.stop()
-            write_pictures(workdir, plan)
+            plan_files.write_pictures(workdir, plan)
             companions.hold_plan_data(obj, {"input": data, "plan": plan})
             report_plan(obj, plan, notes, plunger.name)
             own_tc, problem = companions.activate_companions(obj, plan, tcs)
@@ -318,132 +301,6 @@ class ObjectPlungeRough(PathOp.ObjectOp):
             return
         self.commandlist.extend(companions.toolCommands(obj, companions.plunges_of_tool(plan, own_tc)))
         PathFeedRate.setFeedRate(self.commandlist, own_tc)
-
-
-def selected_faces(obj, tcs):
-    """The selected floor faces as (name, face); ValueError naming what stops the
-    operation from planning: its tool controllers, an edge selected, a deleted companion."""
-    # With the automatic choice the operation itself takes the largest plunger
-    # the plan uses (activate_companions); otherwise its tool controller is the largest.
-    if tcs and obj.ToolController != tcs[0] and not (obj.AutoSelectTools and obj.ToolController in tcs):
-        raise ValueError(translate("PlungeRough", "the operation's tool controller must be its largest plunger (%s)")
-                         % tcs[0].Label)
-    faces = []
-    for base, subs in obj.Base:
-        for sub in subs:
-            if not sub.startswith("Face"):
-                raise ValueError(translate("PlungeRough", "%s.%s is not a face: select the pocket's floor face")
-                                 % (base.Label, sub))
-            faces.append(("%s.%s" % (base.Label, sub), base.Shape.getElement(sub)))
-    if not faces:
-        return faces
-    diameters = [tools.diameter(tc) for tc in tcs]
-    if len(set(diameters)) != len(diameters):
-        raise ValueError(translate("PlungeRough", "two plunger tool controllers have the same diameter"))
-    # Each further plunger cuts through its companion operation: without it
-    # its plunges would silently be missing from the simulation and G-code.
-    have = {comp.ToolController for comp in companions.companions(obj)}
-    missing = [tc for tc in tcs[1:] if tc not in have]
-    if missing:
-        raise ValueError(translate("PlungeRough", "the operation of plunger %s was deleted, so its plunges would "
-                                   "not be cut: untick it in the plunger list (or tick it again)")
-                         % ", ".join(tc.Label for tc in missing))
-    return faces
-
-
-def check_settings(obj, tcs):
-    """ValueError for heights and bits the planner cannot be given."""
-    depth = obj.StartDepth.Value - obj.FinalDepth.Value
-    for tc in tcs:
-        length = tools.bit_length(tc.Tool, "Length")
-        if length and length < depth:
-            raise ValueError("%s is %g mm long, shorter than the pocket is deep (%g mm): use a longer tool"
-                             % (tc.Label, length, depth))
-    if obj.SafeHeight.Value > obj.ClearanceHeight.Value:
-        raise ValueError("the safe height is above the clearance height")
-    if obj.StartDepth.Value <= obj.FinalDepth.Value:
-        raise ValueError("the start depth must be above the final depth")
-
-
-def model_of(obj):
-    """The part the selected faces belong to (walls, fillets and open sides are
-    found on it)."""
-    shapes = [base.Shape for base, subs in obj.Base if subs]
-    return shapes[0] if len(shapes) == 1 else Part.makeCompound(shapes)
-
-
-def build_input(obj, tcs, faces, workdir, notes=None, floors=("z", "brep")):
-    """The planner's input (docs/plan-format.md) for the operation's properties,
-    its plunger tool controllers (largest first) and its floor faces (with the
-    part's fillets and open sides, geometry.pocket). Writes nothing but a
-    sculptured floor's BREP into workdir; ValueError names a bad setting or face.
-    notes: a list that gets what the summary should say of the pocket."""
-    # Past an open side the plunges reach as far as the wall band guarantee
-    # needs to cut up to the edge, and a little more.
-    margin = obj.RadialAllowance.Value + obj.MaxWallStock.Value + 0.5
-    pocket = geometry.pocket(faces, obj.ChordTolerance.Value, obj.IncludeFillets, margin, model_of(obj))
-    if notes is not None:
-        notes.extend(pocket.notes())
-    check_settings(obj, tcs)
-    # Where the pocket widens above its floor, the wall band is kept there too.
-    sections, deviation = geometry.sections(model_of(obj), pocket, obj.StartDepth.Value,
-                                                obj.MaxWallStock.Value) \
-        if obj.MaxWallStock.Value > 0 else ([], 0.0)
-    deviation = max(deviation, pocket.deviation)
-    data = {
-        "version": 1,
-        "boundary": pocket.boundary,
-        "islands": pocket.islands,
-        "tools": [tools.spec(tc, obj.MaxEngagement, obj.MinEngagement, tools.Mount(*mount_of(obj)[:2])) for tc in tcs],
-        "holder_clearance": mount_of(obj)[2],
-        # Rapids and retracts at the first plunger's rapid rates, as the post runs them.
-        "time_model": tools.time_model(tcs[0], getattr(obj, "ToolChangeTime", 20.0)),
-        "top_z": obj.StartDepth.Value,
-        "safe_z": obj.SafeHeight.Value,
-        "floor": geometry.floor_spec(pocket, obj.FinalDepth.Value, workdir, floors),
-        # FinalDepth is the deepest any plunge goes.
-        "final_depth": obj.FinalDepth.Value,
-        # The chords of a discretised free-form wall may lie off it by the
-        # measured deviation: keeping that much more from the walls never gouges.
-        "allowance": {"radial": obj.RadialAllowance.Value + deviation + 1e-6,
-                      "floor": obj.FloorAllowance.Value},
-        "min_coverage": obj.MinCoverage / 100.0,
-        "max_wall_stock": obj.MaxWallStock.Value,
-        "max_floor_stock": obj.MaxFloorStock.Value,
-        # Lead-out and stock-aware heights are explicit moves: a canned cycle has neither.
-        "lead_out": 0.0 if obj.UseCannedCycle else obj.LeadOut.Value,
-        "stock_aware_heights": bool(obj.StockAwareHeights and not obj.UseCannedCycle),
-        "peck": bool(obj.PeckEnabled),
-        "growth_pattern": GROWTH_PATTERNS.get(getattr(obj, "GrowthPattern", "Auto"), "auto"),
-    }
-    if sections:
-        data["sections"] = sections
-    xs = [p[0] for p in pocket.boundary]
-    ys = [p[1] for p in pocket.boundary]
-    material, rest_notes = rest.material(obj, PathUtils.findParentJob(obj), tcs, ((min(xs), min(ys)), (max(xs), max(ys))),
-                                         obj.StartDepth.Value)
-    if material is not None:
-        data["material"] = material
-    if notes is not None:
-        notes.extend(rest_notes)
-    if obj.DwellTime > 0 and not obj.UseCannedCycle:
-        data["peck_dwell"] = obj.DwellTime
-    if obj.PeckDepth.Value > 0:
-        for tool in data["tools"]:
-            tool["peck_depth"] = obj.PeckDepth.Value
-    data.update(STRATEGIES.get(obj.Strategy, {}))
-    if obj.AutoSelectTools:
-        data["tool_library"] = data.pop("tools")
-        data["tools"] = "auto"
-    return data
-
-
-def plan_folder(obj, create=True):
-    """The operation's own folder for its floor BREP and plan picture."""
-    workdir = os.path.join(tempfile.gettempdir(), "plungerough-%s-%s" % (obj.Document.Name, obj.Name))
-    if create:
-        os.makedirs(workdir, exist_ok=True)
-    return workdir
 
 
 def report_plan(obj, plan, notes=(), planned_by=None):
@@ -477,43 +334,6 @@ def canned_cycle_warning(obj):
                          "to the Job's post processor arguments, or turn canned cycles off")
     return None
 
-
-# The plan's pictures, one per question: (key in the planner's result, file, title).
-PICTURES = (("svg", "plan.svg", "The plan"),
-            ("svg_stock", "plan-stock.svg", "Stock left"),
-            ("svg_heights", "plan-heights.svg", "Stop heights"))
-
-
-def write_pictures(workdir, plan):
-    """The planner's pictures into the operation's folder (taken out of the plan);
-    a view the plan has not (stop heights over a flat floor) is removed."""
-    for key, name, _ in PICTURES:
-        path = os.path.join(workdir, name)
-        picture = plan.pop(key, None)
-        if picture is None:
-            if os.path.exists(path):
-                os.remove(path)
-            continue
-        with open(path, "w") as f:
-            f.write(picture)
-
-
-def plan_pictures(obj):
-    """[(title, path)] of the pictures of the operation's last plan that exist."""
-    folder = plan_folder(obj, create=False)
-    return [(title, os.path.join(folder, name)) for _, name, title in PICTURES
-            if os.path.exists(os.path.join(folder, name))]
-
-
-def plan_picture(obj, name="plan.svg"):
-    """Path of one picture of the operation's last plan (plan.svg: the plan)."""
-    return os.path.join(plan_folder(obj, create=False), name)
-
-
-# The tool controller questions live in tools.py; these names stay for callers
-# that ask the operation's module.
-is_plunger = tools.is_plunger
-job_plungers = tools.job_plungers
 
 # Files saved before the companions had their own module name this class as
 # freecad_plugin.PlungeRough.ObjectPlungeRoughTool; plan_of is the operation's.

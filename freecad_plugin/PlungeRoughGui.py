@@ -11,8 +11,8 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
-from freecad_plugin import PlungeRough, companions, rest, tools, uiforms
-from freecad_plugin.command import ADDON, COMMAND, ICON, MENU_TEXT, TOOL_TIP
+from freecad_plugin import companions, plan_files, PlungeRough, rest, tools, uiforms
+from freecad_plugin.constants import COMMAND, ICON, MENU_TEXT, PANEL, TOOL_TIP
 from freecad_plugin import compat
 from freecad_plugin.compat import PathUtils, gui_modules, gui_util
 
@@ -21,7 +21,6 @@ PathGui = gui_util()
 
 translate = FreeCAD.Qt.translate
 
-PANEL = os.path.join(ADDON, "resources", "panels", "PlungeRoughEdit.ui")
 
 
 class SpinBox(PathGui.QuantitySpinBox):
@@ -98,7 +97,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
         sit in a temporary folder, and a click draws them)."""
         if getattr(self, "obj", None) is None:  # before initPage
             return
-        drawn = [os.path.exists(PlungeRough.plan_picture(self.obj, name)) for _, name in self._pictureButtons()]
+        drawn = [os.path.exists(plan_files.plan_picture(self.obj, name)) for _, name in self._pictureButtons()]
         for (button, _), there in zip(self._pictureButtons(), drawn):
             button.setEnabled(there or not any(drawn))
 
@@ -109,14 +108,14 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
         if self.picture is not None:
             self.picture.close()
             self.picture = None
-        if not os.path.exists(PlungeRough.plan_picture(self.obj, name)):
+        if not os.path.exists(plan_files.plan_picture(self.obj, name)):
             self.obj.touch()
             self.obj.Document.recompute()
             self._enablePictures()
-            if not os.path.exists(PlungeRough.plan_picture(self.obj, name)):
+            if not os.path.exists(plan_files.plan_picture(self.obj, name)):
                 return None
-        self.picture = PictureDialog(PlungeRough.plan_picture(self.obj, name),
-                                     dict((n, t) for _, n, t in PlungeRough.PICTURES)[name],
+        self.picture = PictureDialog(plan_files.plan_picture(self.obj, name),
+                                     dict((n, t) for _, n, t in plan_files.PICTURES)[name],
                                      FreeCADGui.getMainWindow())
         self.picture.show()
         return self.picture
@@ -146,7 +145,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
         """The plungers offered in the list (drills, V-bits, tool controllers
         without a vertical feed are not), plus any the operation already uses."""
         job = PathUtils.findParentJob(self.obj)
-        offered = PlungeRough.job_plungers(job)
+        offered = tools.job_plungers(job)
         return offered + [tc for tc in self.obj.ToolControllers if tc not in offered]
 
     def getFields(self, obj):

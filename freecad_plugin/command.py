@@ -1,8 +1,9 @@
 """The Plunge Rough command and its place in the CAM (1.0) / Path (0.20) workbench.
 
 InitGui.py runs this at FreeCAD's start, before any Path module may be imported,
-so this module imports only FreeCAD, FreeCADGui and Qt; the operation's GUI
-(freecad_plugin.PlungeRoughGui) is imported when the command first runs.
+so this module imports only FreeCAD, FreeCADGui and the addon's constants; the
+operation's GUI (freecad_plugin.PlungeRoughGui) is imported when the command
+first runs, and imports nothing of this module.
 
 - FreeCAD 1.0 has workbench manipulators: the command goes into the CAM menu
   after Adaptive and at the end of the "New Operations" toolbar, by FreeCAD
@@ -10,22 +11,12 @@ so this module imports only FreeCAD, FreeCADGui and Qt; the operation's GUI
 - FreeCAD 0.20 has none: the command is added to the Path workbench's "New
   Operations" toolbar definition and its action to the Path menu after Adaptive.
 """
-import os
-
 import FreeCAD
 import FreeCADGui
-from PySide import QtCore
+
+from freecad_plugin.constants import COMMAND, ICON, MENU_TEXT, TOOL_TIP, TOOLBAR
 
 translate = FreeCAD.Qt.translate
-
-COMMAND = "PlungeRough"
-ADDON = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ICON = os.path.join(ADDON, "resources", "icons", "PlungeRough.svg")
-MENU_TEXT = QtCore.QT_TRANSLATE_NOOP("PlungeRough", "Plunge Rough")
-TOOL_TIP = QtCore.QT_TRANSLATE_NOOP(
-    "PlungeRough", "Rough the selected pocket floor by plunging: packed and covered plunges of several plunger "
-    "sizes, short tours, per-plunge depths")
-TOOLBAR = "New Operations"
 
 
 class CommandPlungeRough:

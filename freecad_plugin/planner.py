@@ -22,11 +22,11 @@ import stat
 import subprocess
 import sys
 import threading
-import time
 
 import FreeCAD
 
-ADDON = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from freecad_plugin.constants import ADDON
+
 ENVIRONMENT = "PLUNGE_ROUGH_PLANNER"
 PREFERENCES = "User parameter:BaseApp/Preferences/Mod/PlungeRough"
 PREFERENCE = "PlannerPath"

@@ -41,6 +41,13 @@ namespace {
 
 Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress& progress);
 
+// Where each stage of a plan starts on the progress bar: one table, in the
+// order planPlaced runs them, so the fraction only rises.
+namespace share {
+constexpr double kCheck = 0.0, kFloor = 0.02, kPlace = 0.05, kDepths = 0.75, kFloorStock = 0.8, kWallBand = 0.86,
+                 kOrder = 0.9, kGrow = 0.92, kMotion = 0.95, kMeasure = 0.98;
+}  // namespace share
+
 std::unique_ptr<FloorSurface> makeFloor(const PlanInput& in) {
   if (in.floor.surface.kind == Floor::Kind::Flat) return makeFlatFloor(in.floor.surface.z);
   if (in.floor.surface.kind == Floor::Kind::Expression) return makeExpressionFloor(in.floor.surface.expression);
@@ -139,7 +146,7 @@ std::vector<CutDisk> depthsOf(const PlanInput& in, const CoverResult& cover, con
                               const Progress& progress) {
   std::vector<CutDisk> out;
   for (const CoverDisk& d : cover.disks) {
-    progress.tick(0.75 + 0.1 * static_cast<double>(out.size()) / cover.disks.size());
+    progress.tick(share::kDepths + (share::kFloorStock - share::kDepths) * out.size() / cover.disks.size());
     // The packing and covering answer with an index into the radii they were
     // given (the tools in order); from here on a plunge knows its tool by id.
     const Tool& tool = in.tools[d.tool];
@@ -195,7 +202,7 @@ void floorStockStep(const PlanInput& in, const ToolTable& tools, const Region& r
   if (!isSculptured(in, floor) || in.floor.maxFloorStock <= 0.0) return;
   StockGrid grid = stockGrid(in, region, floor, out.stats.regionArea, 0.5 * tools.all().back().diameter, progress);
   for (const CutDisk& d : disks) grid.cut(d, cutterOf(tools.byId(d.toolId)));
-  progress.stage(0.85, "plunges for the floor stock");
+  progress.stage(share::kFloorStock, "plunges for the floor stock");
   FloorStockOptions ro;
   ro.maxFloorStock = in.floor.maxFloorStock;
   ro.radialAllowance = in.radialAllowance;
@@ -496,7 +503,7 @@ void wallBandAbove(const PlanInput& in, const ToolTable& tools, const DepthSolve
   std::stable_sort(order.begin(), order.end(), [](const Section* a, const Section* b) { return a->z < b->z; });
   std::vector<double> radii;
   for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
-  progress.stage(0.84, "the wall band above the floor");
+  progress.stage(share::kWallBand, "the wall band above the floor");
   for (const Section* s : order) {
     const double stop = s->z + in.floorAllowance;
     if (stop >= in.topZ) continue;
@@ -539,11 +546,11 @@ std::vector<CutDisk> placeAndDepth(const PlanInput& in, const ToolTable& tools, 
                                    const Progress& progress) {
   std::vector<double> radii;
   for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
-  progress.stage(0.05, "packing and covering");
+  progress.stage(share::kPlace, "packing and covering");
   const CoverResult cover =
       placed ? std::move(*placed) : placePlunges(in, pocket.region, radii, pocket.core, progress);
   out.stats.regionArea = poly::area(allowedRegion(pocket.region, in.radialAllowance));
-  progress.stage(0.75, "plunge depths");
+  progress.stage(share::kDepths, "plunge depths");
   std::vector<CutDisk> disks = depthsOf(in, cover, depths, progress);
   floorStockStep(in, tools, pocket.region, floor, depths, disks, out, progress);
   wallBandAbove(in, tools, depths, disks, progress);
@@ -738,7 +745,7 @@ Plan planChoosingTools(const PlanInput& in, const Progress& progress) {
 
 Plan plan(PlanInput in, const Progress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
-  progress.stage(0.0, "checking the pocket");
+  progress.stage(share::kCheck, "checking the pocket");
   if (in.choice.automatic) in.tools = in.choice.library;
   validate(in);
   const std::vector<std::string> notes = in.notes;
@@ -765,7 +772,7 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   const Vec2 lo = pocket.region.minCorner(), hi = pocket.region.maxCorner();
   // Refused before the long part: its depths would take hours.
   if (const std::string why = floor->unfollowable(lo, hi); !why.empty()) throw Error(why);
-  progress.stage(0.02, "analysing the floor");
+  progress.stage(share::kFloor, "analysing the floor");
   const DepthSolver depths(*floor, lo, hi, std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)),
                            progress);
   bool finalDepthHeld = false;
@@ -785,10 +792,10 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
                                    [](const Tool& t) { return std::isfinite(engagementLimit(t)); });
   auto post = [&](const std::vector<CutDisk>& cut) {
     out.plunges.clear();
-    progress.stage(0.9, "ordering the plunges");
+    progress.stage(share::kOrder, "ordering the plunges");
     sequence(in, tools, cut, out, progress);
     if (limited) {
-      progress.stage(0.92, "growing the cut within the engagement limits");
+      progress.stage(share::kGrow, "growing the cut within the engagement limits");
       HeightField stock = stockOf(in.tools, material, pocket.region);
       out.plunges = growWithinLimits(pocket.region, depths, out.plunges, stock, engagementOptions(in, tools, material, progress));
     }
@@ -821,11 +828,11 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
     return Measures{coverOf(plunges, out.accessible, pocket.core),
                     measureFloorStock(in, tools, pocket.region, *own, plunges, out.stats.regionArea, material, progress)};
   });
-  progress.stage(0.95, "heights and lead-outs");
-  motion.progress = progress.sub(0.95, 0.98);
+  progress.stage(share::kMotion, "heights and lead-outs");
+  motion.progress = progress.sub(share::kMotion, share::kMeasure);
   const size_t warned = out.warnings.size(), broken = out.broken.size();
   planMotion(pocket.region, depths, out, motion);
-  progress.stage(0.98, "measuring the stock left");
+  progress.stage(share::kMeasure, "measuring the stock left");
   const Measures measured = progress.await(measuring);
   // The motion's warnings after the coverage's.
   std::vector<std::string> motionWarnings(out.warnings.begin() + warned, out.warnings.end());

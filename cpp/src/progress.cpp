@@ -34,7 +34,9 @@ void Progress::report(double fraction, bool force) const {
   State& s = *state_;
   if (s.cancelled) throw Cancelled();
   if (!s.callback || std::this_thread::get_id() != s.owner) return;
-  if (fraction >= 0.0) s.fraction = lo_ + (hi_ - lo_) * std::clamp(fraction, 0.0, 1.0);
+  // Never back: a stage run again (the plunges posted a second time for the
+  // tool that reaches) keeps the bar where it was.
+  if (fraction >= 0.0) s.fraction = std::max(s.fraction, lo_ + (hi_ - lo_) * std::clamp(fraction, 0.0, 1.0));
   if (!force && std::chrono::steady_clock::now() - s.last < s.interval) return;
   s.last = std::chrono::steady_clock::now();
   bool go = false;

@@ -30,9 +30,9 @@ OUT = os.path.abspath(os.environ.get("PLUNGE_OUT", "out"))
 
 def copy_pictures(op, stem):
     """The operation's pictures into OUT: stem.svg (the plan), stem-stock.svg, stem-heights.svg."""
-    from freecad_plugin import PlungeRough
-    for _, name, _ in PlungeRough.PICTURES:
-        path = PlungeRough.plan_picture(op, name)
+    from freecad_plugin import plan_files
+    for _, name, _ in plan_files.PICTURES:
+        path = plan_files.plan_picture(op, name)
         if os.path.exists(path):
             shutil.copyfile(path, os.path.join(OUT, stem + name[len("plan"):]))
 
@@ -53,6 +53,9 @@ def main():
     part.Shape = example_part.freeform_part(sculptured=True)
     doc.recompute()
     job = compat.job_gui().Create([part], openTaskPanel=False)
+    # The post the docs name, so that File > Export or the Post command of the
+    # saved demo writes what the docs show (a new Job takes the first post listed).
+    job.PostProcessor = "linuxcnc"
     doc.recompute()
     face = example_part.floor_face_name(job.Model.Group[0].Shape, sculptured=True)
     # One tool bit file per plunger, as a tool library keeps them (out/bits/).
@@ -117,6 +120,7 @@ def deep_pocket_demo():
         if obj is not part:
             obj.Visibility = False
     job = compat.job_gui().Create([part], openTaskPanel=False)
+    job.PostProcessor = "linuxcnc"
     doc.recompute()
     face = example_part.floor_face_name(job.Model.Group[0].Shape, sculptured=False)
     # Held 90 mm out in 40 mm holders: deep enough for the 75 mm pocket, the

@@ -97,6 +97,33 @@ TEST(Progress, CallbackExceptionPropagates) {
   EXPECT_TRUE(progress.cancelled());  // the other packing thread stopped too
 }
 
+// A plan through every stage (a sculptured floor with the floor-stock step,
+// a section wider than the floor, flute levels, holders that stop plunges so
+// that the plunges are posted twice): each stage is reported, and the
+// fraction only rises.
+TEST(Progress, RisesThroughEveryStage) {
+  PlanInput in = test::rectanglePocket();
+  in.floor.surface.kind = Floor::Kind::Expression;
+  in.floor.surface.expression = "-12 + 2 * sin(x / 9) * cos(y / 7)";
+  in.floor.sections = {{-6.0, {{-3, -3}, {123, -3}, {123, 83}, {-3, 83}}, {}}};
+  for (Tool& t : in.tools) {
+    t.fluteLength = 8.0;
+    t.stickOut = 12.0;
+    t.holderDiameter = 40.0;
+  }
+  in.tools.push_back({6, 3, 100});
+  in.tools.back().stickOut = 40.0;
+  in.tools.back().holderDiameter = 10.0;
+  Seen seen;
+  const Plan p = plan(in, recorder(seen));
+  ASSERT_FALSE(p.plunges.empty());
+  for (size_t i = 1; i < seen.fractions.size(); ++i)
+    EXPECT_GE(seen.fractions[i], seen.fractions[i - 1]) << seen.stages[i - 1] << " then " << seen.stages[i];
+  for (const char* s : {"plunge depths", "plunges for the floor stock", "the wall band above the floor",
+                        "ordering the plunges", "heights and lead-outs", "measuring the stock left"})
+    EXPECT_NE(std::find(seen.stages.begin(), seen.stages.end(), s), seen.stages.end()) << s;
+}
+
 TEST(Progress, SubRangesMapFractions) {
   std::vector<double> got;
   Progress p([&](double f, const std::string&) { got.push_back(f); return true; }, std::chrono::milliseconds(0));

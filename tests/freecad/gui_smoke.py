@@ -396,7 +396,7 @@ def show_pictures(page):
 
 def example_document():
     """Phase 1: the shipped example."""
-    from freecad_plugin import PlungeRough, companions, compat
+    from freecad_plugin import PlungeRough, companions, compat, plan_files
     doc = FreeCAD.openDocument(os.environ["PLUNGE_EXAMPLE_DOC"])
     FreeCADGui.ActiveDocument.ActiveView.viewIsometric()
     FreeCADGui.activateWorkbench(compat.workbench_name())
@@ -420,9 +420,9 @@ def example_document():
         QtGui.QListWidget, "toolControllers") is not None
     # As on a fresh machine: the pictures of a plan restored with its document
     # are not drawn yet (they live in a temporary folder); the first click draws them.
-    for _, name, _ in PlungeRough.PICTURES:
-        if os.path.exists(PlungeRough.plan_picture(op, name)):
-            os.remove(PlungeRough.plan_picture(op, name))
+    for _, name, _ in plan_files.PICTURES:
+        if os.path.exists(plan_files.plan_picture(op, name)):
+            os.remove(plan_files.plan_picture(op, name))
     if panel is not None:
         panel.featurePages[-1]._enablePictures()
     result["example"]["pictures"] = show_pictures(panel.featurePages[-1]) if panel is not None else {}
@@ -692,7 +692,7 @@ def plunge_mill_bit():
     """Phase 4: the plunge-mill bit that installing the addon put in the tool
     library, added in a new Job's panel as any bit (before 1.1 its file, in
     1.1 from the library dialog), then opened in FreeCAD's tool bit editor."""
-    from freecad_plugin import PlungeRough, compat, plunge_mill, tools
+    from freecad_plugin import compat, plunge_mill, tools
     doc = FreeCAD.newDocument("PlungeMill")
     block = doc.addObject("Part::Box", "Block")
     block.Length, block.Width, block.Height = 120, 80, 40
@@ -718,7 +718,7 @@ def plunge_mill_bit():
     tc = tcs[0]
     tc.VertFeed = "120 mm/min"
     spec = tools.spec(tc)
-    result["plunge_mill"].update({"plunger": PlungeRough.is_plunger(tc), "spec": spec,
+    result["plunge_mill"].update({"plunger": tools.is_plunger(tc), "spec": spec,
                                   "solid": [round(v, 3) for v in (tc.Tool.Shape.BoundBox.XLength,
                                                                   tc.Tool.Shape.BoundBox.ZLength)]})
     if compat.tool_library() is None:

@@ -13,7 +13,7 @@ import pytest
 
 import parts
 from conftest import build_op
-from freecad_plugin import PlungeRough, floor_mesh, geometry, planner
+from freecad_plugin import floor_mesh, geometry, operation_input, planner
 from test_pockets import faces_at, filleted_pocket, job_with_op
 
 V = FreeCAD.Vector
@@ -37,12 +37,12 @@ def pocket(request, tmp_path_factory):
     the floor as BREP faces and as the addon's mesh."""
     doc = FreeCAD.newDocument("FloorMesh_" + request.param.__name__)
     job, op, tcs = request.param(doc)
-    selected = PlungeRough.selected_faces(op, tcs)
+    selected = operation_input.selected_faces(op, tcs)
     faces = [f for _, f in geometry.pocket(selected, op.ChordTolerance.Value, op.IncludeFillets, 2.0,
-                                           PlungeRough.model_of(op)).faces]
+                                           operation_input.model_of(op)).faces]
     folder = str(tmp_path_factory.mktemp("floor"))
-    brep = PlungeRough.build_input(op, tcs, selected, folder, floors=("z", "brep"))
-    mesh = PlungeRough.build_input(op, tcs, selected, folder, floors=("z", "expression", "mesh"))
+    brep = operation_input.build_input(op, tcs, selected, folder, floors=("z", "brep"))
+    mesh = operation_input.build_input(op, tcs, selected, folder, floors=("z", "expression", "mesh"))
     assert "brep" in brep["floor"] and "mesh" in mesh["floor"]
     yield [f.copy() for f in faces], brep, mesh
     FreeCAD.closeDocument(doc.Name)

@@ -73,6 +73,9 @@ def result(out):
     program = open(os.path.join(example, "deep_pocket.ngc")).read()
     changes = re.findall(r"^\s*(?:N\d+\s+)?M0?6\s+T(\d+)|^\s*(?:N\d+\s+)?T(\d+)\s+M0?6", program, re.M)
     assert changes and len(changes) == len(chosen), (chosen, changes)
+    # Both saved demos post with the post the docs name.
+    for saved in (doc, os.path.join(example, "deep_pocket.FCStd")):
+        assert saved_post_processor(saved) == "linuxcnc", saved
     # Each demo's pictures, one per question: stop heights only over the
     # first demo's sculptured floor, not over the die pocket's flat one.
     pictures = sorted(f for f in os.listdir(example) if f.endswith(".svg"))
@@ -85,6 +88,16 @@ def result(out):
             {"PLUNGE_BUILD_DIR": BUILD, "PLUNGE_GUI_OUT": out, "PLUNGE_EXAMPLE_DOC": doc}, 1200)
     with open(result_file) as f:
         return json.load(f)
+
+
+def saved_post_processor(path):
+    """The Job's PostProcessor in a saved document (its Document.xml)."""
+    import zipfile
+    xml = zipfile.ZipFile(path).read("Document.xml").decode()
+    block = xml[xml.index('name="PostProcessor" type="App::PropertyEnumeration"'):]
+    block = block[:block.index("</Property>")]
+    index = int(re.search(r'<Integer value="(\d+)"', block).group(1))
+    return re.findall(r'<Enum value="([^"]*)"/>', block)[index]
 
 
 def expected_names():

@@ -130,7 +130,7 @@ def test_a_plunge_mill_from_the_tool_library_plans_with_its_core_and_limit(doc, 
     mill.VertFeed = "150 mm/min"
     job.Proxy.addToolController(mill)
     small = parts.add_tool_controller(job, 16, 6)  # centre-cutting, wider than the core: the start holes
-    assert PlungeRough.is_plunger(mill)
+    assert tools.is_plunger(mill)
     op = PlungeRough.Create("PlungeRough", parentJob=job)
     op.Base = [(job.Model.Group[0], [parts.floor_face_name(job.Model.Group[0].Shape, False)])]
     op.ToolControllers = [mill, small]

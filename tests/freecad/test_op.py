@@ -11,7 +11,7 @@ import parts
 from conftest import build_op
 from gcode import job_program, path_blocks, replay
 from machine_check import assert_machinable, check_program
-from freecad_plugin import PlungeRough, companions, compat
+from freecad_plugin import companions, compat, operation_input, PlungeRough
 
 
 def plunges_of(job):
@@ -120,9 +120,9 @@ def test_build_input_is_the_planner_input_of_the_properties(doc, tmp_path):
     with open(os.path.join(root, "docs", "plan-input.schema.json")) as f:
         schema = jsonschema.Draft202012Validator(json.load(f))
     plungers = companions.tool_controllers(op)
-    faces = PlungeRough.selected_faces(op, plungers)
+    faces = operation_input.selected_faces(op, plungers)
     before = (op.PlanData, op.Summary, [c.Name for c in op.Path.Commands])
-    data = PlungeRough.build_input(op, plungers, faces, str(tmp_path))
+    data = operation_input.build_input(op, plungers, faces, str(tmp_path))
     assert data == json.loads(op.PlanData)["input"]  # what the operation planned with
     assert (op.PlanData, op.Summary, [c.Name for c in op.Path.Commands]) == before  # changed nothing
     schema.validate(data)
@@ -145,7 +145,7 @@ def test_build_input_is_the_planner_input_of_the_properties(doc, tmp_path):
     op.AutoSelectTools = True
     op.GrowthPattern = "Offsets"
     op.ToolChangeTime = 45.0
-    data = PlungeRough.build_input(op, plungers, faces, str(tmp_path))
+    data = operation_input.build_input(op, plungers, faces, str(tmp_path))
     schema.validate(data)
     assert data["growth_pattern"] == "offsets" and data["time_model"]["tool_change_seconds"] == 45.0
     assert data["lead_out"] == 0.0 and data["stock_aware_heights"] is False
@@ -153,7 +153,7 @@ def test_build_input_is_the_planner_input_of_the_properties(doc, tmp_path):
     assert data["tools"] == "auto" and [t["diameter"] for t in data["tool_library"]] == [20, 12, 6]
     op.SafeHeight = op.ClearanceHeight.Value + 1
     with pytest.raises(ValueError, match="safe height"):
-        PlungeRough.build_input(op, plungers, faces, str(tmp_path))
+        operation_input.build_input(op, plungers, faces, str(tmp_path))
 
 
 def test_no_plunge_below_the_final_depth(doc):

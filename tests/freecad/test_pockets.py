@@ -1,6 +1,7 @@
 """Real pockets, modelled as a user models them (Part boxes, cuts and fillets,
 the part placed off the origin), planned from the faces a user selects, posted
 with linuxcnc and the G-code checked against the part's own solid (part_check)."""
+import json
 import math
 import os
 
@@ -10,7 +11,7 @@ import pytest
 
 import parts
 from part_check import check
-from freecad_plugin import PlungeRough, companions
+from freecad_plugin import companions, plan_files, PlungeRough
 from freecad_plugin.compat import PathJob, post_job
 from gcode import parse_gcode
 
@@ -110,7 +111,7 @@ def check_job(job, op, tcs, levels):
     assert plan is not None, op.Summary
     if PICTURES:
         os.makedirs(PICTURES, exist_ok=True)
-        with open(PlungeRough.plan_picture(op)) as f, \
+        with open(plan_files.plan_picture(op)) as f, \
                 open(os.path.join(PICTURES, "%s.svg" % job.Document.Name.lower()), "w") as g:
             g.write(f.read())
     text = post_job(job, "linuxcnc", "--no-header --no-show-editor")
@@ -179,7 +180,7 @@ def test_filleted_pocket_without_its_fillets_keeps_them(doc):
     # The fillets are walls now: no plunge cuts into them, and the pocket, wider
     # above its floor, keeps the wall band there too (sections of the part), so
     # nothing is left that the band and the floor stock do not excuse.
-    sections = PlungeRough.json.loads(op.PlanData)["input"]["sections"]
+    sections = json.loads(op.PlanData)["input"]["sections"]
     assert sections and all(z < s["z"] <= z + 3 + 1e-6 for s in sections)
     assert not report["uncut"], report["uncut"]
 
@@ -194,7 +195,7 @@ def test_pocket_in_a_pocket(doc, selection):
     assert op.FinalDepth.Value == pytest.approx(min(levels))  # the lowest selected face
     plan, report = check_job(job, op, tcs, levels)
     assert_clean(report)
-    data = PlungeRough.json.loads(op.PlanData)["input"]
+    data = json.loads(op.PlanData)["input"]
     assert data["islands"] == []  # the deeper pocket is no island, and no slivers
     zs = sorted(p["z"] for p in plan["plunges"])
     assert zs[0] == pytest.approx(min(levels) + FLOOR)

@@ -8,7 +8,7 @@ import pytest
 
 import parts
 from conftest import build_op
-from freecad_plugin import PlungeRough, companions, compat
+from freecad_plugin import companions, compat, PlungeRough, tools
 
 
 def test_setup_sheet_prototype_shows_every_default():
@@ -39,7 +39,7 @@ def test_new_op_ticks_every_plunger_largest_its_own(doc):
     assert [float(tc.Tool.Diameter) for tc in op.ToolControllers] == [20, 12, 6]
     assert float(op.ToolController.Tool.Diameter) == 20
     default = [tc for tc in job.Tools.Group if tc not in tcs]
-    assert default and not any(PlungeRough.is_plunger(tc) for tc in default)
+    assert default and not any(tools.is_plunger(tc) for tc in default)
     assert [c.Label for c in companions.companions(op)] == [op.Label + " T3 12 mm", op.Label + " T4 6 mm"]
 
 

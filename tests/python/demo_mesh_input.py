@@ -14,13 +14,13 @@ sys.path[:0] = [ROOT, os.path.join(ROOT, "resources", "examples")]
 import FreeCAD  # noqa: E402
 
 from example_part import add_plunge_rough, floor_face_name, freeform_part, make_job  # noqa: E402
-from freecad_plugin import PlungeRough, planner  # noqa: E402
+from freecad_plugin import operation_input, planner  # noqa: E402
 
 doc = FreeCAD.newDocument("DemoMesh")
 job = make_job(doc, freeform_part())
 op, tcs = add_plunge_rough(job, floor_face_name(job.Model.Group[0].Shape, True))
-faces = PlungeRough.selected_faces(op, tcs)
-data = PlungeRough.build_input(op, tcs, faces, FreeCAD.getUserAppDataDir(), floors=("z", "expression", "mesh"))
+faces = operation_input.selected_faces(op, tcs)
+data = operation_input.build_input(op, tcs, faces, FreeCAD.getUserAppDataDir(), floors=("z", "expression", "mesh"))
 assert "mesh" in data["floor"], data["floor"]
 with open(os.environ["PLUNGE_DEMO_MESH_INPUT"], "w") as f:
     json.dump(data, f)
