@@ -34,7 +34,7 @@ struct CoveringOptions {
   double allowance = 0.0;  // radial allowance, as in packing
   // Stop covering material attached to the walls once this fraction of the
   // accessible region is covered (free-standing pins are always covered).
-  double minCoverage = 0.996;
+  double minCoverage = CoveringSettings{}.minCoverage;  // the input's default, written once (types.hpp)
   // The wall band (mm beyond the allowance, "max_wall_stock"): when > 0, every
   // point of the accessible region farther than allowance + wallStock from the
   // walls is covered (the core), material inside the band may stay, and

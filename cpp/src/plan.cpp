@@ -48,6 +48,45 @@ constexpr double kCheck = 0.0, kFloor = 0.02, kPlace = 0.05, kDepths = 0.75, kFl
                  kOrder = 0.9, kGrow = 0.92, kMotion = 0.95, kMeasure = 0.98;
 }  // namespace share
 
+struct Pocket {
+  Region region;
+  Polygons accessible;
+  Polygons core;  // empty without a wall band
+};
+
+// What every stage of planPlaced reads and none changes: the job, its tools,
+// pocket, floor and depths, the progress, and the area the plunges may cut.
+struct Stages {
+  const PlanInput& in;
+  const ToolTable& tools;
+  const Pocket& pocket;
+  const FloorSurface& floor;
+  const DepthSolver& depths;
+  const Progress& progress;
+  double regionArea;
+};
+
+// The tools' radii, in the tools' order: what packing and covering pack (they
+// answer with an index into it).
+std::vector<double> radiiOf(const std::vector<Tool>& tools) {
+  std::vector<double> radii;
+  for (const Tool& t : tools) radii.push_back(0.5 * t.diameter);
+  return radii;
+}
+
+// The covering's options from the input, filled in one place. Every covering
+// of a plan adds disks to measure them later on the final plunges (coverOf):
+// none measures its own core.
+CoveringOptions coveringOptions(const PlanInput& in, const Progress& progress) {
+  CoveringOptions co;
+  co.allowance = in.radialAllowance;
+  co.minCoverage = in.covering.minCoverage;
+  co.wallStock = in.covering.maxWallStock;
+  co.measureCore = false;
+  co.progress = progress;
+  return co;
+}
+
 std::unique_ptr<FloorSurface> makeFloor(const PlanInput& in) {
   if (in.floor.surface.kind == Floor::Kind::Flat) return makeFlatFloor(in.floor.surface.z);
   if (in.floor.surface.kind == Floor::Kind::Expression) return makeExpressionFloor(in.floor.surface.expression);
@@ -107,12 +146,7 @@ CoverResult placePlunges(const PlanInput& in, const Region& region, const std::v
     po.order = order;
     po.wallBand = in.covering.maxWallStock;
     po.progress = progress;
-    CoveringOptions co;
-    co.allowance = in.radialAllowance;
-    co.minCoverage = in.covering.minCoverage;
-    co.wallStock = in.covering.maxWallStock;
-    co.measureCore = false;  // measured on the final plunges (coverOf)
-    co.progress = progress;
+    const CoveringOptions co = coveringOptions(in, progress);
     if (in.covering.maxWallStock <= 0.0) return coverRegion(region, radii, packMaxHoleDegree(region, radii, po), co);
     // With a wall band, only the largest tool is packed: the covering then uses a
     // smaller plunger only where the larger ones cannot reach the core. Unless
@@ -197,10 +231,11 @@ StockGrid stockGrid(const PlanInput& in, const Region& region, const FloorSurfac
   return grid;
 }
 
-void floorStockStep(const PlanInput& in, const ToolTable& tools, const Region& region, const FloorSurface& floor,
-              const DepthSolver& depths, std::vector<CutDisk>& disks, Plan& out, const Progress& progress) {
-  if (!isSculptured(in, floor) || in.floor.maxFloorStock <= 0.0) return;
-  StockGrid grid = stockGrid(in, region, floor, out.stats.regionArea, 0.5 * tools.all().back().diameter, progress);
+std::vector<CutDisk> floorStockStep(const Stages& job, const std::vector<CutDisk>& disks) {
+  const auto& [in, tools, pocket, floor, depths, progress, regionArea] = job;
+  const Region& region = pocket.region;
+  if (!isSculptured(in, floor) || in.floor.maxFloorStock <= 0.0) return {};
+  StockGrid grid = stockGrid(in, region, floor, regionArea, 0.5 * tools.all().back().diameter, progress);
   for (const CutDisk& d : disks) grid.cut(d, cutterOf(tools.byId(d.toolId)));
   progress.stage(share::kFloorStock, "plunges for the floor stock");
   FloorStockOptions ro;
@@ -209,8 +244,7 @@ void floorStockStep(const PlanInput& in, const ToolTable& tools, const Region& r
   ro.floorAllowance = in.floorAllowance;
   ro.topZ = in.topZ;
   ro.progress = progress;
-  const FloorStockResult added = plungeFloorStock(region, depths, tools, grid, ro);
-  disks.insert(disks.end(), added.added.begin(), added.added.end());
+  return plungeFloorStock(region, depths, tools, grid, ro).added;
 }
 
 // The stock the plan's plunges leave on the floor, and the volumes: measured
@@ -450,12 +484,6 @@ void wallBandAboveStats(const PlanInput& in, const ToolTable& tools, Plan& out) 
 // The pocket as planned: the region (walls simplified when huge, the tolerance
 // added to the radial allowance), what the smallest tool reaches, and the core
 // beyond the wall band. Leaves out the tools that fit nowhere (a warning).
-struct Pocket {
-  Region region;
-  Polygons accessible;
-  Polygons core;  // empty without a wall band
-};
-
 Pocket pocketOf(PlanInput& in, Plan& out) {
   // Boundaries of many thousand vertices plan on walls simplified within a few
   // um, that tolerance added to the radial allowance (limits.hpp).
@@ -495,14 +523,14 @@ Pocket pocketOf(PlanInput& in, Plan& out) {
 // section holds the disk and the allowance, and the walls do not overhang, so
 // nothing of the part is nearer below. Lowest section first: its plunges cut
 // through the higher ones too.
-void wallBandAbove(const PlanInput& in, const ToolTable& tools, const DepthSolver& depths,
-                   std::vector<CutDisk>& disks, const Progress& progress) {
-  if (in.covering.maxWallStock <= 0.0 || in.floor.sections.empty()) return;
+std::vector<CutDisk> wallBandAbove(const Stages& job, std::vector<CutDisk> disks) {
+  const auto& [in, tools, pocket, floor, depths, progress, regionArea] = job;
+  const size_t before = disks.size();
+  if (in.covering.maxWallStock <= 0.0 || in.floor.sections.empty()) return {};
   std::vector<const Section*> order;
   for (const Section& s : in.floor.sections) order.push_back(&s);
   std::stable_sort(order.begin(), order.end(), [](const Section* a, const Section* b) { return a->z < b->z; });
-  std::vector<double> radii;
-  for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
+  const std::vector<double> radii = radiiOf(in.tools);
   progress.stage(share::kWallBand, "the wall band above the floor");
   for (const Section* s : order) {
     const double stop = s->z + in.floorAllowance;
@@ -515,12 +543,7 @@ void wallBandAbove(const PlanInput& in, const ToolTable& tools, const DepthSolve
       // The covering's disks know their tool by its place in `radii`.
       if (r > 0) through.push_back({d.center, r, r, static_cast<int>(tools.indexOf(d.toolId))});
     }
-    CoveringOptions co;
-    co.allowance = in.radialAllowance;
-    co.wallStock = in.covering.maxWallStock;
-    co.minCoverage = in.covering.minCoverage;
-    co.measureCore = false;  // only the disks added are used
-    co.progress = progress;
+    const CoveringOptions co = coveringOptions(in, progress);
     const CoverResult cover = coverRegion(region, radii, through, co);
     for (size_t k = through.size(); k < cover.disks.size(); ++k) {
       const CoverDisk& n = cover.disks[k];
@@ -534,34 +557,34 @@ void wallBandAbove(const PlanInput& in, const ToolTable& tools, const DepthSolve
       if (z < in.topZ) disks.push_back({n.center, tools.all()[n.tool].id, z});
     }
   }
+  return {disks.begin() + static_cast<std::ptrdiff_t>(before), disks.end()};
 }
 
 // Plunge positions and their stop heights: packing and covering (or the grid),
 // the depth of each (4.4), the floor-stock step, then no plunge below final_depth
 // (held: whether that raised any plunge above the floor).
 // (placed: the positions when the tool choice has placed them already.)
-std::vector<CutDisk> placeAndDepth(const PlanInput& in, const ToolTable& tools, const Pocket& pocket,
-                                   const FloorSurface& floor, const DepthSolver& depths,
-                                   std::optional<CoverResult> placed, Plan& out, bool& held,
-                                   const Progress& progress) {
-  std::vector<double> radii;
-  for (const Tool& t : in.tools) radii.push_back(0.5 * t.diameter);
+struct Placed {
+  std::vector<CutDisk> disks;
+  bool finalDepthHeld = false;  // the final depth raised a plunge above the floor
+};
+
+Placed placeAndDepth(const Stages& job, std::optional<CoverResult> placed) {
+  const auto& [in, tools, pocket, floor, depths, progress, regionArea] = job;
   progress.stage(share::kPlace, "packing and covering");
   const CoverResult cover =
-      placed ? std::move(*placed) : placePlunges(in, pocket.region, radii, pocket.core, progress);
-  out.stats.regionArea = poly::area(allowedRegion(pocket.region, in.radialAllowance));
+      placed ? std::move(*placed) : placePlunges(in, pocket.region, radiiOf(in.tools), pocket.core, progress);
   progress.stage(share::kDepths, "plunge depths");
-  std::vector<CutDisk> disks = depthsOf(in, cover, depths, progress);
-  floorStockStep(in, tools, pocket.region, floor, depths, disks, out, progress);
-  wallBandAbove(in, tools, depths, disks, progress);
-  held = false;
+  Placed out{depthsOf(in, cover, depths, progress)};
+  for (const CutDisk& d : floorStockStep(job, out.disks)) out.disks.push_back(d);
+  for (const CutDisk& d : wallBandAbove(job, out.disks)) out.disks.push_back(d);
   if (in.floor.finalDepth)
-    for (CutDisk& d : disks) {
+    for (CutDisk& d : out.disks) {
       const double lowest = *in.floor.finalDepth + in.floorAllowance;
-      held = held || d.z < lowest - 1e-9;
+      out.finalDepthHeld = out.finalDepthHeld || d.z < lowest - 1e-9;
       d.z = std::max(d.z, lowest);
     }
-  return disks;
+  return out;
 }
 
 // Rest plunging: the plunges that would cut none of the material the
@@ -614,12 +637,7 @@ std::vector<CutDisk> reachWhereHeld(const PlanInput& in, const ToolTable& tools,
     const double r = 0.5 * tools.byId(p.toolId).diameter;
     through.push_back({{p.x, p.y}, r, r, -1});
   }
-  CoveringOptions co;
-  co.allowance = in.radialAllowance;
-  co.wallStock = in.covering.maxWallStock;
-  co.minCoverage = in.covering.minCoverage;
-  co.measureCore = false;
-  const CoverResult cover = coverRegion(region, radii, through, co);
+  const CoverResult cover = coverRegion(region, radii, through, coveringOptions(in, Progress()));
   const double lowest = in.floor.finalDepth ? *in.floor.finalDepth + in.floorAllowance : -std::numeric_limits<double>::infinity();
   for (size_t k = through.size(); k < cover.disks.size(); ++k) {
     const CoverDisk& n = cover.disks[k];
@@ -734,8 +752,7 @@ Plan planChoosingTools(const PlanInput& in, const Progress& progress) {
     validate(sub);
     Plan out;
     const Pocket pocket = pocketOf(sub, out);  // may drop tools that fit nowhere
-    std::vector<double> radii;
-    for (const Tool& t : sub.tools) radii.push_back(0.5 * t.diameter);
+    const std::vector<double> radii = radiiOf(sub.tools);
     return placePlunges(sub, pocket.region, radii, pocket.core, p);
   };
   return planWithToolSelection(in, stages, progress);
@@ -775,9 +792,9 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   progress.stage(share::kFloor, "analysing the floor");
   const DepthSolver depths(*floor, lo, hi, std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)),
                            progress);
-  bool finalDepthHeld = false;
-  std::vector<CutDisk> disks =
-      placeAndDepth(in, tools, pocket, *floor, depths, std::move(placed), out, finalDepthHeld, progress);
+  out.stats.regionArea = poly::area(allowedRegion(pocket.region, in.radialAllowance));
+  const Stages job{in, tools, pocket, *floor, depths, progress, out.stats.regionArea};
+  auto [disks, finalDepthHeld] = placeAndDepth(job, std::move(placed));
   const std::vector<Plunge> inAir = dropAirPlunges(in, material, tools, pocket.region, disks);
   out.stats.airPlunges = static_cast<int>(inAir.size());
   out.stats.restMaterial = material.known();
@@ -824,9 +841,13 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   // The plunges left out in air count as cut: the material is gone there.
   std::vector<Plunge> cutting = out.plunges;
   cutting.insert(cutting.end(), inAir.begin(), inAir.end());
-  auto measuring = std::async(std::launch::async, [&, plunges = std::move(cutting), own = floor->clone()] {
-    return Measures{coverOf(plunges, out.accessible, pocket.core),
-                    measureFloorStock(in, tools, pocket.region, *own, plunges, out.stats.regionArea, material, progress)};
+  // It reads only its own copies and what no stage changes any more (the
+  // input, the pocket, the tools, the material): nothing of `out`, which the
+  // motion writes meanwhile.
+  auto measuring = std::async(std::launch::async, [&, plunges = std::move(cutting), own = floor->clone(),
+                                                   accessible = out.accessible, area = out.stats.regionArea] {
+    return Measures{coverOf(plunges, accessible, pocket.core),
+                    measureFloorStock(in, tools, pocket.region, *own, plunges, area, material, progress)};
   });
   progress.stage(share::kMotion, "heights and lead-outs");
   motion.progress = progress.sub(share::kMotion, share::kMeasure);
