@@ -320,11 +320,23 @@ def report_errors():
     would see; FreeCAD's own known ones aside, each recorded with the step
     during which it came (the last one recorded)."""
     errors, known = classify(report_lines(), FreeCAD.Version()[0] == "0")
-    result["report"] = [e for e in errors if e not in result.get("expected_errors", [])]
+    # What was read before the view was cleared (clear_report_view) counts too.
+    result["report"] = result.get("report_cleared", []) + [
+        e for e in errors if e not in result.get("expected_errors", [])]
     during = result["steps"][-1] if result["steps"] else "start"
     before = result.setdefault("report_known_upstream", [])
-    before.extend({"bug": bug, "step": during, "traceback": text} for bug, text in known[len(before):])
+    seen = len(before) - result.get("known_cleared", 0)
+    before.extend({"bug": bug, "step": during, "traceback": text} for bug, text in known[seen:])
     save()
+
+
+def clear_report_view():
+    """The report view as a user's new session shows it, for the screenshots
+    of the new Job: every line so far read and kept first (report_errors)."""
+    report_errors()
+    result["report_cleared"] = list(result["report"])
+    result["known_cleared"] = len(result.get("report_known_upstream", []))
+    FreeCADGui.getMainWindow().findChild(QtGui.QTextEdit, "Report view").clear()
 
 
 def plunge_action():
@@ -549,6 +561,8 @@ def new_job():
 
     job = compat.job_gui().Create([part], openTaskPanel=False)
     doc.recompute()
+    FreeCADGui.ActiveDocument.ActiveView.fitAll()
+    clear_report_view()  # the screenshots below show this Job's lines only
     # The Job's own panel (with this addon registered on its setup sheet): the
     # plungers from their tool bit files through the Tools tab's Add button and
     # FreeCAD's file dialog, then OK.
@@ -576,6 +590,19 @@ def new_job():
     for tc in tcs:  # the feeds, as in each tool controller's own panel
         tc.VertFeed = "150 mm/min"
         tc.HorizFeed = "600 mm/min"
+    # The Tools tab, where the plungers were added (what the README's picture
+    # shows), its table showing the feeds just set.
+    panel = job.ViewObject.Proxy.taskPanel
+    if hasattr(panel, "updateToolController"):
+        panel.updateToolController()
+    form = panel.form  # the panel's form is itself the tab widget
+    tabs = [form] * isinstance(form, QtGui.QTabWidget) + form.findChildren(QtGui.QTabWidget)
+    shown = [(t, i) for t in tabs for i in range(t.count()) if t.tabText(i).replace("&", "") == "Tools"]
+    if shown:
+        shown[0][0].setCurrentIndex(shown[0][1])
+    result["job_panel_tab"] = shown[0][0].tabText(shown[0][0].currentIndex()) if shown else None
+    del panel, form, tabs, shown
+    wait(0.5)
     screenshot("job_panel.png")
     click_task_button("OK")
     wait(1)
@@ -615,6 +642,12 @@ def new_job():
         area = area.parentWidget()
     result["panel_width"] = [page.form.width(), page.form.minimumSizeHint().width(),
                              area.horizontalScrollBar().isVisible() if area is not None else None]
+    # The page's settings in view, the allowances among them (the README's picture).
+    if area is not None:  # scrolled to the settings' first row (the plungers' list is above it)
+        top = page.form.coolantLabel.mapTo(area.widget(), QtCore.QPoint(0, 0)).y()
+        area.verticalScrollBar().setValue(max(0, top - 8))
+    wait(0.5)
+    result["panel_settings_visible"] = page.form.radialAllowance.visibleRegion().isEmpty() is False
     screenshot("plunge_rough_panel.png")
     del panel, page, items, area  # see example_document
     click_task_button("OK")

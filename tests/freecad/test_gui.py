@@ -206,6 +206,10 @@ def test_new_operation_from_the_toolbar(result):
     assert result["stick_out"] == 120.0  # so did the holder's stick-out
     width, needed, scrolls = result["panel_width"]
     assert needed <= width and scrolls is False, result["panel_width"]  # nothing cut off on the right
+    # The screenshots show what the README says of them: the Job panel's Tools
+    # tab, and the operation's settings with the allowances.
+    assert result["job_panel_tab"] == "Tools"
+    assert result["panel_settings_visible"]
     assert result["strategies"] == ["Packing", "Grid (honeycomb)", "Grid (square)"]
     assert result["auto_checkbox"] is True and result["panel_icon"]  # new operations choose their plungers
     assert "coverage" in result["summary"]
