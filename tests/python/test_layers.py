@@ -91,3 +91,24 @@ def test_the_public_api_stands_alone():
     users += [os.path.join(CPP, "cli", "main.cpp"), os.path.join(CPP, "python", "module.cpp")]
     reaching = sorted((os.path.relpath(p, CPP), i) for p in users for i in includes(p) if i not in public)
     assert not reaching, reaching
+
+
+def test_every_module_has_its_tests():
+    """Each module of the library has its own GoogleTest file, or the page's
+    table names the tests that cover it (and those exist); the table names
+    only modules without a file of their own."""
+    text = open(os.path.join(ROOT, "docs", "architecture.md")).read()
+    table = text.split("<!-- tested-through -->", 1)[1].split("<!-- /tested-through -->", 1)[0]
+    through = {}
+    for module, tests in re.findall(r"^\| `([a-z_]+)` \|[^|]*\| (.*) \|$", table, re.M):
+        through[module] = re.findall(r"`(tests/[^`]+)`", tests)
+        assert through[module], module
+        for t in through[module]:
+            assert os.path.exists(os.path.join(ROOT, t)), (module, t)
+    modules = {module_of(p) for p in sources() if not module_of(p).startswith(("cli/", "python/"))}
+    # The public headers of the data model and the API are tested by every test.
+    modules -= {"types", "error", "plan"}
+    own = {m for m in modules if os.path.exists(os.path.join(ROOT, "tests", "cpp", "test_%s.cpp" % m))}
+    assert sorted(modules - own - set(through)) == [], "modules with no tests named"
+    assert sorted(set(through) & own) == [], "the table names modules that have their own file"
+    assert sorted(set(through) - modules) == [], "the table names modules that do not exist"
