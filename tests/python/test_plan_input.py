@@ -4,6 +4,7 @@ plans, each setting where the plan format puts it; bad settings are refused
 before any geometry."""
 import json
 import os
+import subprocess
 import sys
 
 import jsonschema
@@ -37,7 +38,11 @@ def schema():
 
 
 def test_plan_input_imports_no_freecad():
-    assert "FreeCAD" not in sys.modules and "Path" not in sys.modules
+    """In an interpreter of its own: what this one imported does not count."""
+    code = ("import sys; sys.path.insert(0, %r); from freecad_plugin import plan_input; "
+            "print(sorted(m for m in ('FreeCAD', 'Path', 'Part', 'PySide') if m in sys.modules))" % ROOT)
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]", out
 
 
 def test_the_defaults_make_a_plan(schema, plunge):
