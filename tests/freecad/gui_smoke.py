@@ -414,6 +414,7 @@ def example_document():
     FreeCADGui.activateWorkbench(compat.workbench_name())
     result["simulator"] = compat.simulator_command()  # its commands exist once it is active
     step("example opened")
+    clear_report_view()  # the pictures show what the user does from here (FreeCAD 0.20's opening noise read)
     job = doc.getObject("Job")
     op = doc.getObject("PlungeRough")
     comps = companions.companions(op)
@@ -450,6 +451,7 @@ def example_document():
     step("example: panel and cancel")
     cancel_a_long_plan(doc, op, plan_before)
     kill_a_plan(doc, op)
+    clear_report_view()  # the simulator's picture: its own lines, not the cancel and kill tests'
 
     # The voxel simulator's own panel, fast-forwarded to the end.
     name = compat.voxel_simulator_command()
