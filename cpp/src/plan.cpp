@@ -66,6 +66,13 @@ struct Stages {
   double regionArea;
 };
 
+// Plunge positions and their stop heights (placeAndDepth).
+struct Placed {
+  std::vector<CutDisk> disks;
+  bool finalDepthHeld = false;  // the final depth raised a plunge above the floor
+  bool floorStockOutOfBudget = false;  // the floor-stock step stopped at its budget (stock.hpp)
+};
+
 // The tools' radii, in the tools' order: what packing and covering pack (they
 // answer with an index into it).
 std::vector<double> radiiOf(const std::vector<Tool>& tools) {
@@ -226,12 +233,12 @@ void sequence(const PlanInput& in, const ToolTable& tools, const std::vector<Cut
 StockGrid stockGrid(const PlanInput& in, const Region& region, const FloorSurface& floor, double regionArea,
                     double smallestRadius, const Progress& progress) {
   const double spacing = stockSpacing(regionArea, smallestRadius);
-  StockGrid grid(region, floor, in.radialAllowance, in.floorAllowance, in.covering.maxWallStock, spacing, progress);
+  StockGrid grid(region, floor, {in.radialAllowance, in.floorAllowance, in.covering.maxWallStock, spacing}, progress);
   grid.bandFloorSteps(std::max(in.floor.maxFloorStock, 0.0) + 2.0 * spacing, in.radialAllowance + in.covering.maxWallStock);
   return grid;
 }
 
-std::vector<CutDisk> floorStockStep(const Stages& job, const std::vector<CutDisk>& disks) {
+FloorStockResult floorStockStep(const Stages& job, const std::vector<CutDisk>& disks) {
   const auto& [in, tools, pocket, floor, depths, progress, regionArea] = job;
   const Region& region = pocket.region;
   if (!isSculptured(in, floor) || in.floor.maxFloorStock <= 0.0) return {};
@@ -244,7 +251,7 @@ std::vector<CutDisk> floorStockStep(const Stages& job, const std::vector<CutDisk
   ro.floorAllowance = in.floorAllowance;
   ro.topZ = in.topZ;
   ro.progress = progress;
-  return plungeFloorStock(region, depths, tools, grid, ro).added;
+  return plungeFloorStock(region, depths, tools, grid, ro);
 }
 
 // The stock the plan's plunges leave on the floor, and the volumes: measured
@@ -280,8 +287,19 @@ FloorStockMeasure measureFloorStock(const PlanInput& in, const ToolTable& tools,
   return out;
 }
 
-// held: plunges the final depth stopped above the floor.
-void reportFloorStock(const PlanInput& in, const FloorStockMeasure& m, Plan& out, bool held) {
+// Why the floor stock stays over the limit: the plunges the final depth held
+// above the floor, the floor-stock step's budget, or no plunger of the job.
+std::string floorStockWhy(const Placed& placed) {
+  if (placed.finalDepthHeld) return "the final depth stops plunges above the floor (a lower final depth would cut it)";
+  if (placed.floorStockOutOfBudget)
+    return "the floor rises and falls faster than the plungers follow: the floor-stock step stopped after " +
+           std::to_string(kFloorStockSearches) +
+           " depth searches, so the plan stays within its minute (a smoother floor, or a larger max floor stock,"
+           " plans in full)";
+  return "no plunger of the job reaches lower there (a smaller or ball-end plunger would)";
+}
+
+void reportFloorStock(const PlanInput& in, const FloorStockMeasure& m, Plan& out, const std::string& why) {
   const StockReport& r = m.report;
   out.stats.maxFloorStockLeft = r.maxFloorStock;
   out.stats.meanFloorStock = r.meanFloorStock;
@@ -294,9 +312,7 @@ void reportFloorStock(const PlanInput& in, const FloorStockMeasure& m, Plan& out
       << " mm of stock stay above the floor, more than the " << in.floor.maxFloorStock << " mm asked for";
     // Plunges held at the final depth leave that stock by request, not for want of a tool.
     sayBroken(out, w.str(),
-              {"max_floor_stock", in.floor.maxFloorStock, r.maxFloorStock, r.maxFloorStockAt, 1,
-               held ? "the final depth stops plunges above the floor (a lower final depth would cut it)"
-                    : "no plunger of the job reaches lower there (a smaller or ball-end plunger would)"});
+              {"max_floor_stock", in.floor.maxFloorStock, r.maxFloorStock, r.maxFloorStockAt, 1, why});
   }
   out.stockMap = m.map;
 }
@@ -564,10 +580,6 @@ std::vector<CutDisk> wallBandAbove(const Stages& job, std::vector<CutDisk> disks
 // the depth of each (4.4), the floor-stock step, then no plunge below final_depth
 // (held: whether that raised any plunge above the floor).
 // (placed: the positions when the tool choice has placed them already.)
-struct Placed {
-  std::vector<CutDisk> disks;
-  bool finalDepthHeld = false;  // the final depth raised a plunge above the floor
-};
 
 Placed placeAndDepth(const Stages& job, std::optional<CoverResult> placed) {
   const auto& [in, tools, pocket, floor, depths, progress, regionArea] = job;
@@ -576,7 +588,9 @@ Placed placeAndDepth(const Stages& job, std::optional<CoverResult> placed) {
       placed ? std::move(*placed) : placePlunges(in, pocket.region, radiiOf(in.tools), pocket.core, progress);
   progress.stage(share::kDepths, "plunge depths");
   Placed out{depthsOf(in, cover, depths, progress)};
-  for (const CutDisk& d : floorStockStep(job, out.disks)) out.disks.push_back(d);
+  const FloorStockResult floorStock = floorStockStep(job, out.disks);
+  out.disks.insert(out.disks.end(), floorStock.added.begin(), floorStock.added.end());
+  out.floorStockOutOfBudget = floorStock.outOfBudget;
   for (const CutDisk& d : wallBandAbove(job, out.disks)) out.disks.push_back(d);
   if (in.floor.finalDepth)
     for (CutDisk& d : out.disks) {
@@ -794,7 +808,8 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
                            progress);
   out.stats.regionArea = poly::area(allowedRegion(pocket.region, in.radialAllowance));
   const Stages job{in, tools, pocket, *floor, depths, progress, out.stats.regionArea};
-  auto [disks, finalDepthHeld] = placeAndDepth(job, std::move(placed));
+  Placed where = placeAndDepth(job, std::move(placed));
+  std::vector<CutDisk>& disks = where.disks;
   const std::vector<Plunge> inAir = dropAirPlunges(in, material, tools, pocket.region, disks);
   out.stats.airPlunges = static_cast<int>(inAir.size());
   out.stats.restMaterial = material.known();
@@ -866,7 +881,7 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   out.broken.insert(out.broken.end(), motionBroken.begin(), motionBroken.end());
   for (size_t k = 0; k < held.broken.size(); ++k) sayBroken(out, held.said[k], held.broken[k]);
   for (std::string& w : uncheckedHolders(out.plunges, tools, in.topZ)) out.warnings.push_back(std::move(w));
-  reportFloorStock(in, measured.stock, out, finalDepthHeld);
+  reportFloorStock(in, measured.stock, out, floorStockWhy(where));
   countPlunges(in, out);
   depthFallbacks(in, depths, out);
   out.stats.planningSeconds = secondsSince(t0);

@@ -38,9 +38,10 @@ double stockSpacing(double area, double minRadius) {
   return std::min(std::max(fine, 0.2), 0.25 * minRadius);
 }
 
-StockGrid::StockGrid(const Region& region, const FloorSurface& floor, double radialAllowance, double floorAllowance,
-                     double wallBand, double spacing, const Progress& progress)
-    : spacing_(spacing) {
+StockGrid::StockGrid(const Region& region, const FloorSurface& floor, const StockSampling& sampling,
+                     const Progress& progress)
+    : spacing_(sampling.spacing) {
+  const auto [radialAllowance, floorAllowance, wallBand, spacing] = sampling;
   if (!(spacing > 0.0)) throw Error("stock sampling: spacing must be > 0");
   const Vec2 lo = region.minCorner(), hi = region.maxCorner();
   // Samples in the middle of raster cells, so that a pocket's edges fall between them.
@@ -155,6 +156,10 @@ class FloorStockStep {
         ++out.unreachable;
         continue;
       }
+      if (searches_ >= opt_.maxSearches) {
+        out.outOfBudget = true;
+        break;
+      }
       const std::optional<CutDisk> best = bestOf(candidatesFor(k), k);
       if (!best) {
         ++out.unreachable;
@@ -164,6 +169,7 @@ class FloorStockStep {
       out.added.push_back(*best);
       out.added.back().forFloorStock = true;
     }
+    out.searches = searches_;
     return out;
   }
 
@@ -283,7 +289,7 @@ class FloorStockStep {
   // The candidate that fixes the most at its exact stop height (a rim
   // optimization each, milliseconds on BREP floors), computed only while a
   // candidate may still beat or tie the best; none if none fixes sample k.
-  std::optional<CutDisk> bestOf(const std::vector<Candidate>& candidates, size_t k) const {
+  std::optional<CutDisk> bestOf(const std::vector<Candidate>& candidates, size_t k) {
     CutDisk best;
     int bestScore = 0;
     size_t bestOrder = 0;
@@ -301,6 +307,7 @@ class FloorStockStep {
           d.z, depths_.plungeHeightAtLeast(d.center, cutter(d), opt_.floorAllowance, opt_.radialAllowance) - kBoundSlack);
       if (d.z >= opt_.topZ || !fixes(d, k)) continue;
       if (outranked(score(d), cand.order)) continue;
+      ++searches_;
       try {
         d.z = depths_.plungeHeight(d.center, cutter(d), opt_.floorAllowance, opt_.radialAllowance);
       } catch (const Error&) {
@@ -340,6 +347,7 @@ class FloorStockStep {
   double target_ = 0.0;
   std::array<Vec2, 8> compass_;  // unit vectors every 45 degrees
   std::vector<char> isOver_;
+  int searches_ = 0;  // exact stop heights searched (bestOf), against opt_.maxSearches
 };
 
 }  // namespace

@@ -39,10 +39,17 @@ struct CutDisk {
 // Samples farther than allowance + wallBand from the walls are the core: the
 // floor stock is measured and limited there (nearer, the wall band's material
 // is the finisher's, and a plunge covers it only with its rim).
+struct StockSampling {
+  double radialAllowance = 0.0;
+  double floorAllowance = 0.0;
+  double wallBand = 0.0;  // max_wall_stock: the band along the walls that is not the core
+  double spacing = 1.0;   // mm between samples (stockSpacing)
+};
+
 class StockGrid {
  public:
-  StockGrid(const Region& region, const FloorSurface& floor, double radialAllowance, double floorAllowance,
-            double wallBand, double spacing, const Progress& progress = Progress());
+  StockGrid(const Region& region, const FloorSurface& floor, const StockSampling& sampling,
+            const Progress& progress = Progress());
   // Steps in the floor (where selected faces at two levels meet, 4.4) are walls
   // of the lower level: its samples within `reach` (the radial allowance and
   // the wall band) of a sample next to one higher by more than `rise` join the
@@ -117,17 +124,28 @@ class StockGrid {
 // (about 200,000 samples), never coarser than a quarter of the smallest tool.
 double stockSpacing(double area, double minRadius);
 
+// See FloorStockOptions::maxSearches: about 15 s on a fast expression floor,
+// 30 s on a BREP floor, so the plan keeps its minute.
+constexpr int kFloorStockSearches = 10000;
+
 struct FloorStockOptions {
   double maxFloorStock = 1.0;  // mm above floor + floor allowance
   double radialAllowance = 0.0;
   double floorAllowance = 0.0;
   double topZ = 0.0;
+  // The exact stop heights the step may search (a rim optimization each, up to
+  // milliseconds on BREP floors). A floor that rises and falls faster than any
+  // plunger follows keeps nearly every sample over the limit, and would be
+  // searched for minutes; the sculptured example needs about 300.
+  int maxSearches = kFloorStockSearches;
   Progress progress;
 };
 
 struct FloorStockResult {
   std::vector<CutDisk> added;  // appended to the plan's disks, in the order chosen
   int unreachable = 0;         // over-limit samples no plunge of the job can bring under the limit
+  int searches = 0;            // exact stop heights searched
+  bool outOfBudget = false;    // stopped at maxSearches with samples still over the limit
 };
 
 // Adds plunges until no cut sample's floor stock exceeds the limit (less a

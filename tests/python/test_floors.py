@@ -177,3 +177,21 @@ def test_a_small_spherical_blend_ends_with_progress_all_along(plunge, brep):
     with pytest.raises(ValueError, match="no floor under the plunge at"):
         plunge.plan(data, svg=False, progress=lambda fraction, stage: stages.append(stage) or True)
     assert "analysing the floor" in stages
+
+
+def test_a_floor_no_plunger_follows_plans_within_the_step_budget(plunge):
+    """The convex pocket over -25+sin(x*10): waves 0.6 mm long and 2 mm deep,
+    which no plunger follows, yet too coarse to refuse. Its floor-stock step
+    searched for minutes; it now stops at its budget and says so, as the
+    floor stock it could not bring under the limit, and no stop is below the
+    floor (sampled finely: the waves are 0.63 mm long)."""
+    data = load_shape("convex")
+    data["floor"] = {"expression": "-25+sin(x*10)"}
+    plan = plunge.plan(data)
+    said = [b for b in plan["broken_limits"] if b["limit"] == "max_floor_stock"]
+    assert len(said) == 1 and "depth searches" in said[0]["why"] and said[0]["worst"] > said[0]["asked"], said
+    assert any("floor-stock step stopped after" in w for w in plan["warnings"]), plan["warnings"]
+    allowance = data["allowance"]["floor"]
+    f = lambda x, y: -25 + math.sin(x * 10)  # noqa: E731
+    for p in plan["plunges"][::4]:
+        assert p["z"] >= disk_max(f, p["x"], p["y"], p["diameter"] / 2, h=0.05) + allowance - 1e-6, p
