@@ -119,8 +119,8 @@ std::vector<std::string> uncheckedHolders(const std::vector<Plunge>& plunges, co
   return out;
 }
 
-HolderLimits holderLimits(const std::vector<HolderStop>& stops, const ToolTable& tools, double clearance) {
-  HolderLimits out;
+Said holderLimits(const std::vector<HolderStop>& stops, const ToolTable& tools, double clearance) {
+  Said out;
   // Per tool: the places its plunges stop above their depth, and the worst.
   std::map<int, Worst> worst;
   for (const HolderStop& s : stops) {
@@ -155,10 +155,9 @@ HolderLimits holderLimits(const std::vector<HolderStop>& stops, const ToolTable&
                    : "a stick-out of " + mm(b.worst) + " mm" +
                          (t.holderDiameter ? std::string(", or a slimmer holder,") : std::string(" (or the holder's diameter given)")) +
                          " would reach");
-    out.said.push_back("at " + std::to_string(w.count) + " places the plunges of " + name + " stop up to " +
-                       mm(w.excess) + " mm above their depth where its " + (shank ? "shank" : "holder") +
-                       " would meet the stock");
-    out.broken.push_back(std::move(b));
+    out.limit("at " + std::to_string(w.count) + " places the plunges of " + name + " stop up to " + mm(w.excess) +
+                  " mm above their depth where its " + (shank ? "shank" : "holder") + " would meet the stock",
+              std::move(b));
   }
   return out;
 }

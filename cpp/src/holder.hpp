@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "broken.hpp"
 #include "material.hpp"
 #include "plunge/tools.hpp"
 #include "plunge/types.hpp"
@@ -58,17 +59,14 @@ struct HolderClearance {
   std::vector<HolderStop> stops;
 };
 
-// The stops no other tool made up for, said per tool: its worst as the
-// stick-out that would reach (BrokenLimit "stick_out"), with a sentence each.
-struct HolderLimits {
-  std::vector<BrokenLimit> broken;
-  std::vector<std::string> said;  // one sentence per entry of `broken`
-};
+
 // Tools whose plunges go deeper than their flutes with nothing known above
 // them (no stick_out): what holds them is not checked, said once per tool.
 std::vector<std::string> uncheckedHolders(const std::vector<Plunge>& plunges, const ToolTable& tools, double topZ);
 
-HolderLimits holderLimits(const std::vector<HolderStop>& stops, const ToolTable& tools, double clearance);
+// The stops no other tool made up for, said per tool: its worst as the
+// stick-out that would reach (BrokenLimit "stick_out").
+Said holderLimits(const std::vector<HolderStop>& stops, const ToolTable& tools, double clearance);
 
 // The posted plunges (levels split) replayed in order on the stock before
 // this operation (material) with the part around the pocket.

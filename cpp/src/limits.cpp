@@ -136,25 +136,27 @@ void checkScale(const PlanInput& in) {
   }
 }
 
-Region planningRegion(const PlanInput& in, double& tolerance) {
+PlanningRegion planningRegion(const PlanInput& in) {
   Region full(in.boundary, in.islands);
+  double tolerance = 0.0;
   std::optional<Region> coarse = simplifiedRegion(full, kPlanningVertices, kMaxBoundaryTolerance, tolerance);
-  return coarse ? std::move(*coarse) : std::move(full);
+  return {coarse ? std::move(*coarse) : std::move(full), tolerance};
 }
 
-std::string dropToolsThatDoNotFit(PlanInput& in, const Region& region) {
+ToolsThatFit toolsThatFit(const std::vector<Tool>& tools, const Region& region, double radialAllowance) {
+  ToolsThatFit out;
   std::string dropped;
-  for (size_t i = 0; i + 1 < in.tools.size();) {
-    const Tool& t = in.tools[i];
-    if (poly::area(accessibleRegion(region, 0.5 * t.diameter, in.radialAllowance)) > 0.0) {
-      ++i;
+  for (size_t i = 0; i < tools.size(); ++i) {
+    const Tool& t = tools[i];
+    if (i + 1 == tools.size() || poly::area(accessibleRegion(region, 0.5 * t.diameter, radialAllowance)) > 0.0) {
+      out.tools.push_back(t);
       continue;
     }
     dropped += (dropped.empty() ? "" : ", ") + std::string("T") + std::to_string(t.id) + " (" +
                mm(t.diameter) + " mm)";
-    in.tools.erase(in.tools.begin() + static_cast<long>(i));
   }
-  return dropped.empty() ? dropped : "tools too large for the pocket, not used: " + dropped;
+  if (!dropped.empty()) out.warning = "tools too large for the pocket, not used: " + dropped;
+  return out;
 }
 
 }  // namespace plunge

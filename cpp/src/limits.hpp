@@ -45,15 +45,23 @@ double estimatedPlunges(const PlanInput& in);
 // The region a plan is made on: the given loops, or with more than
 // kPlanningVertices vertices those simplified (region.hpp's simplifiedRegion);
 // `tolerance` says by how much (0: as given), to add to the radial allowance.
-Region planningRegion(const PlanInput& in, double& tolerance);
+struct PlanningRegion {
+  Region region;
+  double tolerance = 0.0;
+};
+PlanningRegion planningRegion(const PlanInput& in);
 
 // Throws plunge::Error for input beyond the limits above or estimated above
 // in.maxPlunges. Needs validated input (tools sorted, numbers finite).
 void checkScale(const PlanInput& in);
 
-// Removes the tools that fit nowhere in the pocket (region.hpp's accessible
-// region is empty) and returns a warning naming them (empty if none). The
-// smallest tool is kept: plan() reports a pocket that no tool fits.
-std::string dropToolsThatDoNotFit(PlanInput& in, const Region& region);
+// The tools (largest first) without those that fit nowhere in the pocket
+// (region.hpp's accessible region is empty), and a warning naming those (empty
+// if none). The smallest tool is kept: plan() reports a pocket that no tool fits.
+struct ToolsThatFit {
+  std::vector<Tool> tools;
+  std::string warning;
+};
+ToolsThatFit toolsThatFit(const std::vector<Tool>& tools, const Region& region, double radialAllowance);
 
 }  // namespace plunge

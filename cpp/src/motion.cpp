@@ -47,10 +47,10 @@ HeightField stockOf(const std::vector<Tool>& tools, const Material& material, co
   return stock;
 }
 
-std::vector<Plunge> splitIntoLevels(const std::vector<Plunge>& ordered, const MotionOptions& in, PlanStats& stats) {
+Levels splitIntoLevels(const std::vector<Plunge>& ordered, const MotionOptions& in) {
   Touched touched(in.tools.all().front().diameter, in.material);
-  std::vector<Plunge> out;
-  stats.levels = 1;
+  Levels split;
+  std::vector<Plunge>& out = split.plunges;
   forEachGroup(ordered, [&](size_t i, size_t j) {
     const Tool& t = in.tools.byId(ordered[i].toolId);
     const Cutter cutter = cutterOf(t);
@@ -63,7 +63,7 @@ std::vector<Plunge> splitIntoLevels(const std::vector<Plunge>& ordered, const Mo
       if (t.fluteLength)
         levels = std::max(levels, static_cast<int>(std::ceil((top.back() - ordered[k].z) / step - 1e-9)));
     }
-    stats.levels = std::max(stats.levels, levels);
+    split.levels = std::max(split.levels, levels);
     // Every other level runs its path backwards: it starts where the level
     // above ended instead of crossing the pocket back. Not for a tool with an
     // engagement limit: its order is what keeps each plunge within it.
@@ -80,7 +80,7 @@ std::vector<Plunge> splitIntoLevels(const std::vector<Plunge>& ordered, const Mo
         touched.add({p.x, p.y}, cutter.radius, p.z + cornerHeight(t));
       }
   });
-  return out;
+  return split;
 }
 
 namespace {
@@ -118,13 +118,13 @@ struct Worst {
     b.at = {p.x, p.y};
   }
   // Said once with its count, the worst and why.
-  void say(Plan& plan, const std::string& what, const char* why) {
+  void say(Said& said, const std::string& what, const char* why) {
     if (b.count == 0) return;
     std::ostringstream s;
     s << std::fixed << std::setprecision(2) << b.count << what << " (" << b.worst << " mm against " << b.asked
       << " mm)";
     b.why = why;
-    sayBroken(plan, s.str(), b);
+    said.limit(s.str(), b);
   }
 };
 
@@ -141,7 +141,7 @@ class MotionPass {
     core_.b = {"core_diameter", 0, 0, {}, 0, ""};
     deep_.b = {"flute_length", 0, 0, {}, 0, ""};
   }
-  void run(Plan& plan);
+  Motion run(std::vector<Plunge> plunges);
 
  private:
   // A rapid's way to the next plunge: its height and the points between.
@@ -152,11 +152,11 @@ class MotionPass {
   // What a way around the wall band keeps from it (mm beyond the band).
   static constexpr double kBandMargin = 0.2;
   double measure(Plunge& p, const Tool& t);
-  void retractBefore(Plan& plan, size_t i);
+  void retractBefore(Motion& m, size_t i);
   double heightAlong(const Plunge& q, const Plunge& p, const std::vector<Vec2>& path) const;
   Way wayTo(const Plunge& q, const Plunge& p, Vec2 from) const;
-  void leadOut(Plan& plan, size_t i, const Tool& t);
-  void report(Plan& plan);
+  void leadOut(Motion& m, size_t i, const Tool& t);
+  void report(Motion& m);
 
   const Region& region_;
   const DepthSolver& depths_;
@@ -168,31 +168,30 @@ class MotionPass {
   Worst over_, thin_, core_, deep_;
 };
 
-void MotionPass::run(Plan& plan) {
-  plan.stats.overEngaged = plan.stats.thinCuts = 0;
-  plan.stats.leadOuts = plan.stats.raisedLeadOuts = plan.stats.noLeadOutMaterial = plan.stats.noLeadOutWalls = 0;
-  plan.stats.travelLength = 0.0;
-  plan.stats.peckedPlunges = 0;
-  std::vector<Plunge>& ps = plan.plunges;
+Motion MotionPass::run(std::vector<Plunge> plunges) {
+  Motion m;
+  m.plunges = std::move(plunges);
+  std::vector<Plunge>& ps = m.plunges;
   for (size_t i = 0; i < ps.size(); ++i) {
     in_.progress.tick(static_cast<double>(i) / ps.size());
     Plunge& p = ps[i];
     const Tool& t = in_.tools.byId(p.toolId);
     const double top = measure(p, t);
     p.approachZ = in_.settings.stockAwareHeights ? std::min(in_.safeZ, std::max(top, p.z) + in_.settings.rapidClearance) : in_.safeZ;
-    if (i > 0) retractBefore(plan, i);
+    if (i > 0) retractBefore(m, i);
     p.pecks = pecksOf(p, t, stock_, in_);
-    if (!p.pecks.empty()) ++plan.stats.peckedPlunges;
+    if (!p.pecks.empty()) ++m.stats.peckedPlunges;
     const Cutter cutter = cutterOf(t);
     stock_.cut({p.x, p.y}, cutter, p.z);
     cuts_.add({p.x, p.y}, cutter, p.z);
     touched_.add({p.x, p.y}, cutter.radius, p.z + cornerHeight(t));
-    leadOut(plan, i, t);
+    leadOut(m, i, t);
     p.retractZ = in_.safeZ;
   }
-  report(plan);
-  plan.stats.estimatedMinutes = motionMinutes(plan, in_, false);
-  plan.stats.minutesAtSafeHeight = motionMinutes(plan, in_, true);
+  report(m);
+  m.stats.estimatedMinutes = motionMinutes(m.plunges, in_, false);
+  m.stats.minutesAtSafeHeight = motionMinutes(m.plunges, in_, true);
+  return m;
 }
 
 // What the plunge meets: its engagement measured exactly (cuts.hpp), as the
@@ -221,9 +220,9 @@ double MotionPass::measure(Plunge& p, const Tool& t) {
 
 // The retract of the plunge before plunge i: as high as the stock along the
 // move needs, straight or around (wayTo).
-void MotionPass::retractBefore(Plan& plan, size_t i) {
-  const Plunge& p = plan.plunges[i];
-  Plunge& q = plan.plunges[i - 1];
+void MotionPass::retractBefore(Motion& m, size_t i) {
+  const Plunge& p = m.plunges[i];
+  Plunge& q = m.plunges[i - 1];
   const Vec2 c{p.x, p.y};
   const Vec2 from = q.leadOut ? *q.leadOut : Vec2{q.x, q.y};
   q.retractZ = in_.safeZ;
@@ -239,7 +238,7 @@ void MotionPass::retractBefore(Plan& plan, size_t i) {
     length += dist(at, v);
     at = v;
   }
-  plan.stats.travelLength += length + dist(at, c);
+  m.stats.travelLength += length + dist(at, c);
 }
 
 // The height a rapid along `path` needs: rapid_clearance over the stock its
@@ -303,15 +302,15 @@ MotionPass::Way MotionPass::wayTo(const Plunge& q, const Plunge& p, Vec2 from) c
 }
 
 // Plunge i's lead-out (lead_out.hpp), cut into the stock the next plunges meet.
-void MotionPass::leadOut(Plan& plan, size_t i, const Tool& t) {
-  Plunge& p = plan.plunges[i];
+void MotionPass::leadOut(Motion& m, size_t i, const Tool& t) {
+  Plunge& p = m.plunges[i];
   const Cutter cutter = cutterOf(t);
   p.leadOut.reset();
   p.leadOutZ.reset();
   if (in_.settings.leadOut > 0.0) {
     // Back toward the plunge before, where the same tool just cut.
     std::optional<Plunge> back;
-    if (i > 0 && plan.plunges[i - 1].toolId == p.toolId) back = plan.plunges[i - 1];
+    if (i > 0 && m.plunges[i - 1].toolId == p.toolId) back = m.plunges[i - 1];
     LeadOut out = leadOutOf({in_, region_, depths_, stock_, touched_}, p, cutter, back);
     // None where the holder or shank, moved along with the tip, would meet the
     // stock (beside the walls of a deep pocket): no room at the walls.
@@ -322,10 +321,10 @@ void MotionPass::leadOut(Plan& plan, size_t i, const Tool& t) {
     }
     p.leadOut = out.to;
     p.leadOutZ = out.z;
-    if (out.why == NoLeadOut::Material) ++plan.stats.noLeadOutMaterial;
-    if (out.why == NoLeadOut::Walls) ++plan.stats.noLeadOutWalls;
-    if (p.leadOut) ++plan.stats.leadOuts;
-    if (p.leadOutZ) ++plan.stats.raisedLeadOuts;
+    if (out.why == NoLeadOut::Material) ++m.stats.noLeadOutMaterial;
+    if (out.why == NoLeadOut::Walls) ++m.stats.noLeadOutWalls;
+    if (p.leadOut) ++m.stats.leadOuts;
+    if (p.leadOutZ) ++m.stats.raisedLeadOuts;
   }
   if (p.leadOut) {
     touched_.add(*p.leadOut, cutter.radius, p.leadOutZ.value_or(p.z) + cornerHeight(t));
@@ -334,42 +333,43 @@ void MotionPass::leadOut(Plan& plan, size_t i, const Tool& t) {
 }
 
 // What the limits could not keep, each said once with its count, the worst and why.
-void MotionPass::report(Plan& plan) {
-  plan.stats.overEngaged = over_.b.count;
-  plan.stats.thinCuts = thin_.b.count;
-  over_.say(plan, " plunges cut a wider band than their tool's max engagement",
+void MotionPass::report(Motion& m) {
+  m.stats.overEngaged = over_.b.count;
+  m.stats.thinCuts = thin_.b.count;
+  over_.say(m.said, " plunges cut a wider band than their tool's max engagement",
             over_.start
                 ? "a start the growth had to make beside cut material, where no path reached within the limit;"
                   " a smaller plunger there, or a larger max engagement, avoids it"
                 : "uneven depths of a sculptured floor leave steps thicker than the limit there; a lower max floor"
                   " stock or a smaller plunger cuts them in thinner steps");
-  thin_.say(plan, " plunges cut a narrower band than their tool's min engagement",
+  thin_.say(m.said, " plunges cut a narrower band than their tool's min engagement",
             "the last slivers of their region, where the walls leave no wider cut, and the tool may deflect there; a"
             " smaller min engagement, or a smaller plunger for the slivers, avoids them");
-  core_.say(plan, " plunges of a non-centre-cutting tool have material under the core",
+  core_.say(m.said, " plunges of a non-centre-cutting tool have material under the core",
             "uneven floor depths leave material there that the core cannot cut; a centre-cutting plunger, or a lower"
             " max floor stock, clears it first");
-  deep_.say(plan, " plunges cut deeper than their tool's flute length",
+  deep_.say(m.said, " plunges cut deeper than their tool's flute length",
             "the material there stands higher above the stop than the flutes reach; a plunger with longer flutes"
             " would cut it");
 }
 
 }  // namespace
 
-void planMotion(const Region& region, const DepthSolver& depths, Plan& plan, const MotionOptions& in) {
-  MotionPass(region, depths, in).run(plan);
+Motion planMotion(const Region& region, const DepthSolver& depths, std::vector<Plunge> plunges,
+                  const MotionOptions& in) {
+  return MotionPass(region, depths, in).run(std::move(plunges));
 }
 
-double motionMinutes(const Plan& plan, const MotionOptions& in, bool atSafeHeight) {
+double motionMinutes(const std::vector<Plunge>& plunges, const MotionOptions& in, bool atSafeHeight) {
   const TimeModel& m = in.settings.timeModel;
   double minutes = 0.0, z = in.safeZ;
   int changes = 0;
-  for (size_t i = 0; i < plan.plunges.size(); ++i) {
-    const Plunge& p = plan.plunges[i];
+  for (size_t i = 0; i < plunges.size(); ++i) {
+    const Plunge& p = plunges[i];
     const double feed = in.tools.byId(p.toolId).feed;
-    if (i == 0 || plan.plunges[i - 1].toolId != p.toolId) ++changes;
+    if (i == 0 || plunges[i - 1].toolId != p.toolId) ++changes;
     if (i > 0) {
-      const Plunge& q = plan.plunges[i - 1];
+      const Plunge& q = plunges[i - 1];
       Vec2 at = q.leadOut ? *q.leadOut : Vec2{q.x, q.y};
       for (Vec2 v : atSafeHeight ? std::vector<Vec2>{} : q.via) {
         minutes += dist(at, v) / m.rapidRate;

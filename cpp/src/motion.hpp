@@ -18,6 +18,7 @@
 #pragma once
 #include <vector>
 
+#include "broken.hpp"
 #include "depth.hpp"
 #include "heightfield.hpp"
 #include "plunge/progress.hpp"
@@ -39,22 +40,38 @@ struct MotionOptions {
   Progress progress;  // ticked per plunge (it may cancel)
 };
 
-// Splits the plunges of tools with a flute length into levels (same positions,
-// stepping down); returns the new order and sets stats.levels.
-std::vector<Plunge> splitIntoLevels(const std::vector<Plunge>& ordered, const MotionOptions& options,
-                                    PlanStats& stats);
+// The plunges of tools with a flute length split into levels (same positions,
+// stepping down), in their new order, and the most levels any tool needs.
+struct Levels {
+  std::vector<Plunge> plunges;
+  int levels = 1;
+};
+Levels splitIntoLevels(const std::vector<Plunge>& ordered, const MotionOptions& options);
 
 // The height field every simulation of a plan uses (bounds, spacing), for the
 // tools (largest first) in the region, uncut: the material before this operation.
 HeightField stockOf(const std::vector<Tool>& tools, const Material& material, const Region& region);
 
-// Fills every plunge's approachZ, retractZ, leadOut and engagement, counts the
-// plunges beyond a tool's limits (stats.overEngaged, thinCuts) and adds a
-// warning for each kind; travel length and both time estimates.
-void planMotion(const Region& region, const DepthSolver& depths, Plan& plan, const MotionOptions& options);
+// What the moves come to: counts of the lead-outs and of the plunges beyond a
+// tool's limits, travel and both time estimates (PlanStats' fields of the same names).
+struct MotionStats {
+  int overEngaged = 0, thinCuts = 0, peckedPlunges = 0;
+  int leadOuts = 0, raisedLeadOuts = 0, noLeadOutMaterial = 0, noLeadOutWalls = 0;
+  double travelLength = 0.0, estimatedMinutes = 0.0, minutesAtSafeHeight = 0.0;
+};
 
-// Minutes of a plan's moves as planMotion laid them out; atSafeHeight: as if
-// every approach and retract went to safe_z.
-double motionMinutes(const Plan& plan, const MotionOptions& options, bool atSafeHeight);
+struct Motion {
+  std::vector<Plunge> plunges;  // each with its approachZ, retractZ, pecks, lead-out and way there
+  MotionStats stats;
+  Said said;  // a warning for each limit the plunges break, with its count, the worst and why
+};
+
+// The plunges, in their order, with the machine's moves laid out.
+Motion planMotion(const Region& region, const DepthSolver& depths, std::vector<Plunge> plunges,
+                  const MotionOptions& options);
+
+// Minutes of the plunges' moves as planMotion laid them out; atSafeHeight: as
+// if every approach and retract went to safe_z.
+double motionMinutes(const std::vector<Plunge>& plunges, const MotionOptions& options, bool atSafeHeight);
 
 }  // namespace plunge

@@ -39,7 +39,7 @@ namespace plunge {
 
 namespace {
 
-Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress& progress);
+Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const Progress& progress);
 
 // Where each stage of a plan starts on the progress bar: one table, in the
 // order planPlaced runs them, so the fraction only rises.
@@ -54,14 +54,16 @@ struct Pocket {
   Polygons core;  // empty without a wall band
 };
 
-// What every stage of planPlaced reads and none changes: the job, its tools,
-// pocket, floor and depths, the progress, and the area the plunges may cut.
+// What every stage of planPlaced reads and none changes: the job (as planned:
+// pocketOf), its tools, pocket, floor and depths, the material the operations
+// before left, the progress, and the area the plunges may cut.
 struct Stages {
   const PlanInput& in;
   const ToolTable& tools;
   const Pocket& pocket;
   const FloorSurface& floor;
   const DepthSolver& depths;
+  const Material& material;
   const Progress& progress;
   double regionArea;
 };
@@ -201,8 +203,9 @@ std::vector<CutDisk> depthsOf(const PlanInput& in, const CoverResult& cover, con
 
 // Execution order: tools largest first, each tool's plunges as a short open path
 // starting nearest to where the previous tool ended.
-void sequence(const PlanInput& in, const ToolTable& tools, const std::vector<CutDisk>& disks, Plan& out,
-              const Progress& progress) {
+std::vector<Plunge> sequence(const Stages& job, const std::vector<CutDisk>& disks) {
+  const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
+  std::vector<Plunge> out;
   Vec2 at = in.motion.start ? *in.motion.start : in.boundary.front();
   TourOptions to;
   to.method = in.motion.sequencing;
@@ -219,30 +222,33 @@ void sequence(const PlanInput& in, const ToolTable& tools, const std::vector<Cut
     if (pts.empty()) continue;
     for (int i : tour(pts, false, at, to)) {
       const Vec2 p = pts[i];
-      out.plunges.push_back(plungeOf(tool, p, mine[i]->z));
-      out.plunges.back().forFloorStock = mine[i]->forFloorStock;
+      out.push_back(plungeOf(tool, p, mine[i]->z));
+      out.back().forFloorStock = mine[i]->forFloorStock;
       at = p;
     }
   }
+  return out;
 }
 
 // The floor-stock step: plunges added where a sculptured floor keeps more stock
 // than asked for (stock.hpp).
 // The stock samples of the pocket, with the wall band along steps in the floor
 // (a rise of the limit and two sample steps between neighbours: no floor slope).
-StockGrid stockGrid(const PlanInput& in, const Region& region, const FloorSurface& floor, double regionArea,
-                    double smallestRadius, const Progress& progress) {
-  const double spacing = stockSpacing(regionArea, smallestRadius);
-  StockGrid grid(region, floor, {in.radialAllowance, in.floorAllowance, in.covering.maxWallStock, spacing}, progress);
+// (floor: the job's, or a clone of it on another thread.)
+StockGrid stockGrid(const Stages& job, const FloorSurface& floor) {
+  const PlanInput& in = job.in;
+  const double spacing = stockSpacing(job.regionArea, 0.5 * job.tools.all().back().diameter);
+  StockGrid grid(job.pocket.region, floor, {in.radialAllowance, in.floorAllowance, in.covering.maxWallStock, spacing},
+                 job.progress);
   grid.bandFloorSteps(std::max(in.floor.maxFloorStock, 0.0) + 2.0 * spacing, in.radialAllowance + in.covering.maxWallStock);
   return grid;
 }
 
 FloorStockResult floorStockStep(const Stages& job, const std::vector<CutDisk>& disks) {
-  const auto& [in, tools, pocket, floor, depths, progress, regionArea] = job;
+  const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
   const Region& region = pocket.region;
   if (!isSculptured(in, floor) || in.floor.maxFloorStock <= 0.0) return {};
-  StockGrid grid = stockGrid(in, region, floor, regionArea, 0.5 * tools.all().back().diameter, progress);
+  StockGrid grid = stockGrid(job, floor);
   for (const CutDisk& d : disks) grid.cut(d, cutterOf(tools.byId(d.toolId)));
   progress.stage(share::kFloorStock, "plunges for the floor stock");
   FloorStockOptions ro;
@@ -261,10 +267,10 @@ struct FloorStockMeasure {
   std::optional<StockMap> map;  // sculptured floors only
 };
 
-FloorStockMeasure measureFloorStock(const PlanInput& in, const ToolTable& tools, const Region& region,
-                                    const FloorSurface& floor, const std::vector<Plunge>& plunges, double regionArea,
-                                    const Material& material, const Progress& progress) {
-  StockGrid grid = stockGrid(in, region, floor, regionArea, 0.5 * tools.all().back().diameter, progress);
+// (floor: a clone of the job's, for the thread this runs on.)
+FloorStockMeasure measureFloorStock(const Stages& job, const FloorSurface& floor, const std::vector<Plunge>& plunges) {
+  const auto& [in, tools, pocket, jobFloor, depths, material, progress, regionArea] = job;
+  StockGrid grid = stockGrid(job, floor);
   for (const Plunge& p : plunges) grid.cut({{p.x, p.y}, p.toolId, p.z}, cutterOf(tools.byId(p.toolId)));
   FloorStockMeasure out;
   out.report = measureStock(grid, material);
@@ -299,22 +305,17 @@ std::string floorStockWhy(const Placed& placed) {
   return "no plunger of the job reaches lower there (a smaller or ball-end plunger would)";
 }
 
-void reportFloorStock(const PlanInput& in, const FloorStockMeasure& m, Plan& out, const std::string& why) {
+// The floor stock over max_floor_stock on a sculptured floor, said with why.
+Said floorStockSaid(const PlanInput& in, const FloorStockMeasure& m, const std::string& why) {
+  Said said;
   const StockReport& r = m.report;
-  out.stats.maxFloorStockLeft = r.maxFloorStock;
-  out.stats.meanFloorStock = r.meanFloorStock;
-  out.stats.volumeRemoved = r.volumeRemoved;
-  out.stats.volumeLeft = r.volumeLeft;
-  out.stats.volumeBefore = r.volumeBefore;
   if (m.map && in.floor.maxFloorStock > 0.0 && r.maxFloorStock > in.floor.maxFloorStock + 1e-6) {
     std::ostringstream w;
     w << std::fixed << std::setprecision(2) << "up to " << r.maxFloorStock
       << " mm of stock stay above the floor, more than the " << in.floor.maxFloorStock << " mm asked for";
-    // Plunges held at the final depth leave that stock by request, not for want of a tool.
-    sayBroken(out, w.str(),
-              {"max_floor_stock", in.floor.maxFloorStock, r.maxFloorStock, r.maxFloorStockAt, 1, why});
+    said.limit(w.str(), {"max_floor_stock", in.floor.maxFloorStock, r.maxFloorStock, r.maxFloorStockAt, 1, why});
   }
-  out.stockMap = m.map;
+  return said;
 }
 
 // What the final plunges cut, as a covering's result: the stats describe the
@@ -331,12 +332,17 @@ CoverResult coverOf(const std::vector<Plunge>& plunges, const Polygons& accessib
   return c;
 }
 
-// Plunges per tool (largest first) and start holes.
-void countPlunges(const PlanInput& in, Plan& out) {
-  out.stats.perTool.clear();
+// Plunges per tool (largest first), start holes and the floor-stock step's.
+struct PlungeCounts {
+  std::vector<ToolCount> perTool;
+  int plungeCount = 0, startHoles = 0, floorStockPlunges = 0;
+};
+
+PlungeCounts countPlunges(const PlanInput& in, const std::vector<Plunge>& plunges) {
+  PlungeCounts out;
+  auto count = [&](auto&& f) { return static_cast<int>(std::count_if(plunges.begin(), plunges.end(), f)); };
   for (const Tool& t : in.tools) {
-    const int n = static_cast<int>(std::count_if(out.plunges.begin(), out.plunges.end(),
-                                                 [&](const Plunge& p) { return p.toolId == t.id; }));
+    const int n = count([&](const Plunge& p) { return p.toolId == t.id; });
     if (n == 0) continue;
     ToolCount c;
     c.toolId = t.id;
@@ -346,16 +352,13 @@ void countPlunges(const PlanInput& in, Plan& out) {
     c.stickOut = t.stickOut;
     c.holderDiameter = t.holderDiameter;
     c.shankDiameter = t.shankDiameter;
-    c.holderLimited = static_cast<int>(std::count_if(out.plunges.begin(), out.plunges.end(),
-                                                     [&](const Plunge& p) { return p.toolId == t.id && p.holderLimited; }));
-    out.stats.perTool.push_back(c);
+    c.holderLimited = count([&](const Plunge& p) { return p.toolId == t.id && p.holderLimited; });
+    out.perTool.push_back(c);
   }
-  out.stats.startHoles = static_cast<int>(
-      std::count_if(out.plunges.begin(), out.plunges.end(), [](const Plunge& p) { return p.startHole; }));
-  out.stats.plungeCount = static_cast<int>(out.plunges.size());
-  out.stats.floorStockPlunges = static_cast<int>(
-      std::count_if(out.plunges.begin(), out.plunges.end(),
-                    [](const Plunge& p) { return p.forFloorStock && p.level == 0; }));
+  out.startHoles = count([](const Plunge& p) { return p.startHole; });
+  out.plungeCount = static_cast<int>(plunges.size());
+  out.floorStockPlunges = count([](const Plunge& p) { return p.forFloorStock && p.level == 0; });
+  return out;
 }
 
 // The radius a plunge of `cutter` with its tip at z cuts at height `at`: all
@@ -388,29 +391,35 @@ WallStock outOfReach(const Region& region, const PlanInput& in, const Polygons& 
 }
 
 // Coverage, the core beyond the wall band and the wall stock, from what the
-// plan's plunges cut (coverOf).
-void coverageStats(const PlanInput& in, const Region& region, const CoverResult& cover, Plan& out) {
+// plan's plunges cut (coverOf), and the limits they break.
+struct Coverage {
+  double coverage = 0.0, hexReferenceCount = 0.0, coreArea = 0.0, coreCoverage = 0.0, maxWallStockLeft = 0.0;
+  Said said;
+};
+
+Coverage coverageOf(const Stages& job, const CoverResult& cover) {
+  const PlanInput& in = job.in;
+  const Region& region = job.pocket.region;
+  const Polygons& accessible = job.pocket.accessible;
+  Coverage out;
   const double rMax = 0.5 * in.tools.front().diameter;
-  out.uncovered = cover.uncovered;
-  out.stats.accessibleArea = cover.accessibleArea;
-  out.stats.coveredArea = cover.coveredArea;
-  out.stats.coverage = cover.accessibleArea > 0 ? cover.coveredArea / cover.accessibleArea : 0.0;
-  out.stats.hexReferenceCount = cover.accessibleArea / (detail::kHexCellArea * rMax * rMax);
+  out.coverage = cover.accessibleArea > 0 ? cover.coveredArea / cover.accessibleArea : 0.0;
+  out.hexReferenceCount = cover.accessibleArea / (detail::kHexCellArea * rMax * rMax);
   // The core beyond the wall band; without a band, the whole accessible region.
   Polygons coreLeft = cover.coreUncovered;
-  out.stats.coreArea = cover.coreArea;
+  out.coreArea = cover.coreArea;
   if (in.covering.maxWallStock <= 0.0) {
-    out.stats.coreArea = cover.accessibleArea;
+    out.coreArea = cover.accessibleArea;
     coreLeft = cover.uncovered;
   }
-  out.stats.coreCoverage = out.stats.coreArea > 0 ? 1.0 - poly::area(coreLeft) / out.stats.coreArea : 1.0;
+  out.coreCoverage = out.coreArea > 0 ? 1.0 - poly::area(coreLeft) / out.coreArea : 1.0;
   // Said only of pieces larger than a sliver: those are the disks' chords
   // meeting, not stock (wallStockLeft skips them too: they have no place to report).
   coreLeft.erase(std::remove_if(coreLeft.begin(), coreLeft.end(),
                                 [](const Loop& L) { return std::fabs(signedArea(L)) < kSliverArea; }),
                  coreLeft.end());
-  const WallStock wall = wallStockLeft(region, cover.uncovered, out.accessible, in.radialAllowance);
-  out.stats.maxWallStockLeft = wall.thickest;
+  const WallStock wall = wallStockLeft(region, cover.uncovered, accessible, in.radialAllowance);
+  out.maxWallStockLeft = wall.thickest;
   // Any strategy short of what was asked for says so: the grid's fixed spacing
   // usually is. Worded for users of every front end (no JSON key names).
   std::ostringstream w;
@@ -418,26 +427,27 @@ void coverageStats(const PlanInput& in, const Region& region, const CoverResult&
   const std::string grid = "a grid's fixed spacing cannot reach it (the packing strategy would)";
   if (in.covering.maxWallStock > 0.0 && poly::area(coreLeft) > 0.01) {
     w << "the plunges leave " << poly::area(coreLeft) << " mm^2 farther than " << in.covering.maxWallStock
-      << " mm from the walls uncut (" << 100 * out.stats.coreCoverage << " % of it cut)";
-    const WallStock core = wallStockLeft(region, coreLeft, out.accessible, in.radialAllowance);
-    sayBroken(out, w.str(),
+      << " mm from the walls uncut (" << 100 * out.coreCoverage << " % of it cut)";
+    const WallStock core = wallStockLeft(region, coreLeft, accessible, in.radialAllowance);
+    out.said.limit(w.str(),
               {"max_wall_stock", in.covering.maxWallStock, std::max(core.thickest, wall.thickest), core.at, 1,
                in.packing.strategy == Strategy::Grid ? grid : "slivers between the plunges that no plunge of the plan cut"});
-  } else if (const WallStock corner = outOfReach(region, in, out.accessible);
+  } else if (const WallStock corner = outOfReach(region, in, accessible);
              in.covering.maxWallStock > 0.0 && std::max(wall.thickest, corner.thickest) > in.covering.maxWallStock + kWallStockSlack) {
     const WallStock& worst = corner.thickest > wall.thickest ? corner : wall;
     w << "up to " << worst.thickest << " mm of stock stay on the walls, more than the " << in.covering.maxWallStock
       << " mm asked for";
-    sayBroken(out, w.str(), {"max_wall_stock", in.covering.maxWallStock, worst.thickest, worst.at, 1,
+    out.said.limit(w.str(), {"max_wall_stock", in.covering.maxWallStock, worst.thickest, worst.at, 1,
                              corner.thickest > wall.thickest ? reachWhy(region, in, worst.at)
                                                              : "slivers between the plunges along the walls"});
-  } else if (in.covering.maxWallStock <= 0.0 && out.stats.coverage < in.covering.minCoverage - kCoverageSlack) {
-    w << "the plunges clear " << 100 * out.stats.coverage << " % of the reachable floor, less than the "
+  } else if (in.covering.maxWallStock <= 0.0 && out.coverage < in.covering.minCoverage - kCoverageSlack) {
+    w << "the plunges clear " << 100 * out.coverage << " % of the reachable floor, less than the "
       << 100 * in.covering.minCoverage << " % asked for";
-    sayBroken(out, w.str(),
-              {"min_coverage", in.covering.minCoverage, out.stats.coverage, wall.at, 1,
+    out.said.limit(w.str(),
+              {"min_coverage", in.covering.minCoverage, out.coverage, wall.at, 1,
                in.packing.strategy == Strategy::Grid ? grid : "material stays along the walls between the plunges"});
   }
+  return out;
 }
 
 // The wall band at each section's height, measured on the final plunges: what
@@ -447,8 +457,10 @@ void coverageStats(const PlanInput& in, const Region& region, const CoverResult&
 // section (fillets and blends left as walls, drafts), so the pocket there is
 // nearly as wide as the section, but only the plunges stopping lower cut it.
 // The worst of all is said, at its height.
-void wallBandAboveStats(const PlanInput& in, const ToolTable& tools, Plan& out) {
-  if (in.covering.maxWallStock <= 0.0) return;
+Said wallBandAboveSaid(const Stages& job, const std::vector<Plunge>& plunges) {
+  const PlanInput& in = job.in;
+  Said said;
+  if (in.covering.maxWallStock <= 0.0) return said;
   struct Worst {
     WallStock band;
     double z = 0.0;
@@ -466,9 +478,9 @@ void wallBandAboveStats(const PlanInput& in, const ToolTable& tools, Plan& out) 
     // The plunges that cut at height `at`, each at its radius there.
     auto cutAt = [&](double at) {
       std::vector<Circle> through;
-      for (const Plunge& p : out.plunges) {
+      for (const Plunge& p : plunges) {
         if (p.z > at + 1e-9) continue;
-        const double r = radiusCutAt(cutterOf(tools.byId(p.toolId)), p.z, at);
+        const double r = radiusCutAt(cutterOf(job.tools.byId(p.toolId)), p.z, at);
         if (r > 0) through.push_back({{p.x, p.y}, r});
       }
       return through;
@@ -482,12 +494,12 @@ void wallBandAboveStats(const PlanInput& in, const ToolTable& tools, Plan& out) 
           (!worst || w.band.thickest > worst->band.thickest + 1e-9))
         worst = w;
   }
-  if (!worst) return;
+  if (!worst) return said;
   std::ostringstream w;
   w << std::fixed << std::setprecision(2) << (worst->below ? "just below " : "at ") << worst->z
     << " mm, above the floor, up to " << worst->band.thickest << " mm of stock stay on the walls, more than the "
     << in.covering.maxWallStock << " mm asked for";
-  sayBroken(out, w.str(),
+  said.limit(w.str(),
             {"max_wall_stock", in.covering.maxWallStock, worst->band.thickest, worst->band.at, 1,
              worst->corner  ? reachWhy(*worst->region, in, worst->band.at)
              : worst->below ? "the walls lean in below that height (fillets or blends left as walls, drafts): "
@@ -495,28 +507,37 @@ void wallBandAboveStats(const PlanInput& in, const ToolTable& tools, Plan& out) 
                               "is wider than the plunges beneath cut (fillets included in the floor are plunged "
                               "at their own heights)"
                             : "no plunger of the job fits there down to that height"});
+  return said;
 }
 
-// The pocket as planned: the region (walls simplified when huge, the tolerance
-// added to the radial allowance), what the smallest tool reaches, and the core
-// beyond the wall band. Leaves out the tools that fit nowhere (a warning).
-Pocket pocketOf(PlanInput& in, Plan& out) {
-  // Boundaries of many thousand vertices plan on walls simplified within a few
-  // um, that tolerance added to the radial allowance (limits.hpp).
-  double tolerance = 0.0;
-  Pocket pocket{planningRegion(in, tolerance), {}, {}};
-  in.radialAllowance += tolerance;
-  out.stats.boundaryTolerance = tolerance;
-  const std::string dropped = dropToolsThatDoNotFit(in, pocket.region);
-  if (!dropped.empty()) out.warnings.push_back(dropped);
+// The job as planned, a value derived from the given input, which stays as
+// given: the tools that fit somewhere (the others named in a warning), and
+// on boundaries of many thousand vertices walls simplified within a few um,
+// that tolerance added to the radial allowance (limits.hpp). Its pocket: the
+// region, what the smallest tool reaches, and the core beyond the wall band.
+struct Planned {
+  PlanInput in;
+  Pocket pocket;
+  double tolerance = 0.0;  // stats.boundary_tolerance
+  Said said;
+};
+
+Planned pocketOf(const PlanInput& given) {
+  PlanningRegion walls = planningRegion(given);
+  Planned out{given, {std::move(walls.region), {}, {}}, walls.tolerance, {}};
+  PlanInput& in = out.in;
+  Pocket& pocket = out.pocket;
+  in.radialAllowance += walls.tolerance;
+  ToolsThatFit fit = toolsThatFit(in.tools, pocket.region, in.radialAllowance);
+  in.tools = std::move(fit.tools);
+  if (!fit.warning.empty()) out.said.warn(fit.warning);
   const double rMin = 0.5 * in.tools.back().diameter;
   pocket.accessible = accessibleRegion(pocket.region, rMin, in.radialAllowance);
   if (poly::area(pocket.accessible) <= 0.0) {
     throw Error("no tool fits in the pocket: the smallest tool (diameter " + std::to_string(2 * rMin) +
                 ") with the radial allowance does not fit anywhere");
   }
-  out.accessible = pocket.accessible;
-  if (in.covering.maxWallStock <= 0.0) return pocket;
+  if (in.covering.maxWallStock <= 0.0) return out;
   // A band wider than half the pocket's extent leaves no core (and is no offset to compute).
   if (in.covering.maxWallStock < 0.5 * dist(pocket.region.minCorner(), pocket.region.maxCorner()))
     pocket.core = coreRegion(pocket.region, pocket.accessible, in.radialAllowance, in.covering.maxWallStock);
@@ -527,7 +548,7 @@ Pocket pocketOf(PlanInput& in, Plan& out) {
          " reachable floor)";
     throw Error(m.str());
   }
-  return pocket;
+  return out;
 }
 
 // The wall band above the floor: where the pocket is wider at a height than
@@ -540,7 +561,7 @@ Pocket pocketOf(PlanInput& in, Plan& out) {
 // nothing of the part is nearer below. Lowest section first: its plunges cut
 // through the higher ones too.
 std::vector<CutDisk> wallBandAbove(const Stages& job, std::vector<CutDisk> disks) {
-  const auto& [in, tools, pocket, floor, depths, progress, regionArea] = job;
+  const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
   const size_t before = disks.size();
   if (in.covering.maxWallStock <= 0.0 || in.floor.sections.empty()) return {};
   std::vector<const Section*> order;
@@ -580,9 +601,8 @@ std::vector<CutDisk> wallBandAbove(const Stages& job, std::vector<CutDisk> disks
 // the depth of each (4.4), the floor-stock step, then no plunge below final_depth
 // (held: whether that raised any plunge above the floor).
 // (placed: the positions when the tool choice has placed them already.)
-
 Placed placeAndDepth(const Stages& job, std::optional<CoverResult> placed) {
-  const auto& [in, tools, pocket, floor, depths, progress, regionArea] = job;
+  const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
   progress.stage(share::kPlace, "packing and covering");
   const CoverResult cover =
       placed ? std::move(*placed) : placePlunges(in, pocket.region, radiiOf(in.tools), pocket.core, progress);
@@ -603,22 +623,26 @@ Placed placeAndDepth(const Stages& job, std::optional<CoverResult> placed) {
 
 // Rest plunging: the plunges that would cut none of the material the
 // operations before left, beyond the wall band the plan may leave (a second
-// pass leaves the first's scallops there, as the first did), are taken out
-// of `disks` and returned (with their tools' shapes and depths, to be counted
-// as cut).
-std::vector<Plunge> dropAirPlunges(const PlanInput& in, const Material& material, const ToolTable& tools,
-                                   const Region& region, std::vector<CutDisk>& disks) {
+// pass leaves the first's scallops there, as the first did), are left out
+// (inAir, with their tools' shapes and depths, to be counted as cut).
+struct AirSplit {
+  std::vector<CutDisk> cutting;
   std::vector<Plunge> inAir;
-  if (!material.known()) return inAir;
+};
+
+AirSplit dropAirPlunges(const Stages& job, const std::vector<CutDisk>& disks) {
+  const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
+  if (!material.known()) return {disks, {}};
   const double band = in.radialAllowance + in.covering.maxWallStock;
-  auto counts = [&](Vec2 p) { return region.contains(p) && region.wallDistance(p, band) >= band; };
-  auto air = [&](const CutDisk& d) {
-    return !material.cutsAny(d.center, cutterOf(tools.byId(d.toolId)), d.z, counts);
-  };
-  for (const CutDisk& d : disks)
-    if (air(d)) inAir.push_back(plungeOf(tools.byId(d.toolId), d.center, d.z));
-  disks.erase(std::remove_if(disks.begin(), disks.end(), air), disks.end());
-  return inAir;
+  auto counts = [&](Vec2 p) { return pocket.region.contains(p) && pocket.region.wallDistance(p, band) >= band; };
+  AirSplit out;
+  for (const CutDisk& d : disks) {
+    if (material.cutsAny(d.center, cutterOf(tools.byId(d.toolId)), d.z, counts))
+      out.cutting.push_back(d);
+    else
+      out.inAir.push_back(plungeOf(tools.byId(d.toolId), d.center, d.z));
+  }
+  return out;
 }
 
 // The tool that reaches (holder.hpp): the area the stopped plunges were to
@@ -626,8 +650,8 @@ std::vector<Plunge> dropAirPlunges(const PlanInput& in, const Material& material
 // gaps (every plunge that reached its depth counts as cut). Each new plunge
 // stops on the floor as any other; posted after the larger tools, it meets
 // the material they left, and the replay checks its own holder.
-std::vector<CutDisk> reachWhereHeld(const PlanInput& in, const ToolTable& tools, const Region& region,
-                                    const DepthSolver& depths, const HolderClearance& held) {
+std::vector<CutDisk> reachWhereHeld(const Stages& job, const HolderClearance& held) {
+  const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
   std::set<std::tuple<int, double, double>> stopped;
   std::set<int> stoppedTools;
   for (const HolderStop& s : held.stops) {
@@ -651,7 +675,7 @@ std::vector<CutDisk> reachWhereHeld(const PlanInput& in, const ToolTable& tools,
     const double r = 0.5 * tools.byId(p.toolId).diameter;
     through.push_back({{p.x, p.y}, r, r, -1});
   }
-  const CoverResult cover = coverRegion(region, radii, through, coveringOptions(in, Progress()));
+  const CoverResult cover = coverRegion(pocket.region, radii, through, coveringOptions(in, Progress()));
   const double lowest = in.floor.finalDepth ? *in.floor.finalDepth + in.floorAllowance : -std::numeric_limits<double>::infinity();
   for (size_t k = through.size(); k < cover.disks.size(); ++k) {
     const CoverDisk& n = cover.disks[k];
@@ -690,8 +714,14 @@ std::vector<HolderStop> stillHeld(const Pocket& pocket, const ToolTable& tools,
   return out;
 }
 
-EngagementOptions engagementOptions(const PlanInput& in, const ToolTable& tools, const Material& material,
-                                    const Progress& progress) {
+// What the holders keep clear, in a pocket of this size.
+HolderSettings mountOf(const Stages& job) {
+  return {job.in.motion.holderClearance, dist(job.pocket.region.minCorner(), job.pocket.region.maxCorner())};
+}
+
+// The engagement's and the motion's options: each filled here only, from the job.
+EngagementOptions engagementOptions(const Stages& job) {
+  const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
   EngagementOptions o;
   o.tools = tools;
   o.material = material;
@@ -705,8 +735,8 @@ EngagementOptions engagementOptions(const PlanInput& in, const ToolTable& tools,
   return o;
 }
 
-MotionOptions motionOptions(const PlanInput& in, const ToolTable& tools, const Material& material,
-                            const Progress& progress) {
+MotionOptions motionOptions(const Stages& job) {
+  const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
   MotionOptions o;
   o.tools = tools;
   o.material = material;
@@ -722,28 +752,27 @@ MotionOptions motionOptions(const PlanInput& in, const ToolTable& tools, const M
 // Where the depth search ran out of budget, said (the plan stays gouge-free:
 // dense samples stand in, raised to bound the surface between them), with
 // what does it on this kind of floor and what avoids it.
-void depthFallbacks(const PlanInput& in, const DepthSolver& depths, Plan& out) {
-  out.stats.depthFallbacks = depths.peakFallbacks() + depths.depthFallbacks();
-  if (out.stats.depthFallbacks == 0) return;
-  const std::string n = std::to_string(out.stats.depthFallbacks);
-  const std::string places = out.stats.depthFallbacks == 1 ? " place" : " places";
+Said depthFallbacksSaid(const PlanInput& in, int fallbacks) {
+  Said said;
+  if (fallbacks == 0) return said;
+  const std::string n = std::to_string(fallbacks);
+  const std::string places = fallbacks == 1 ? " place" : " places";
   const std::string sampled = ": their depths come from a dense sample of the floor, raised by the rise between samples";
   switch (in.floor.surface.kind) {
     case Floor::Kind::Expression:
-      out.warnings.push_back("the depth search ran out of its budget on " + n +
-                             places + " of the floor expression" + sampled +
-                             " (terms that change steeply or fast do this; a smoother expression avoids it)");
+      said.warn("the depth search ran out of its budget on " + n + places + " of the floor expression" + sampled +
+                " (terms that change steeply or fast do this; a smoother expression avoids it)");
       break;
     case Floor::Kind::Mesh:
-      out.warnings.push_back("the depth search ran out of its budget on " + n + places + " of the floor mesh" + sampled +
-                             " (many tiny or sliver triangles do this; a coarser meshing of the faces avoids it)");
+      said.warn("the depth search ran out of its budget on " + n + places + " of the floor mesh" + sampled +
+                " (many tiny or sliver triangles do this; a coarser meshing of the faces avoids it)");
       break;
     default:
-      out.warnings.push_back("the depth search ran out of its budget on " + n +
-                             " floor faces, edges or plunges" + sampled +
-                             " (a floor of many tiny or badly parametrised faces does this; selecting fewer, cleaner"
-                             " faces, or a cleaner export of the part, avoids it)");
+      said.warn("the depth search ran out of its budget on " + n + " floor faces, edges or plunges" + sampled +
+                " (a floor of many tiny or badly parametrised faces does this; selecting fewer, cleaner"
+                " faces, or a cleaner export of the part, avoids it)");
   }
+  return said;
 }
 
 double secondsSince(std::chrono::steady_clock::time_point t0) {
@@ -764,10 +793,9 @@ Plan planChoosingTools(const PlanInput& in, const Progress& progress) {
   };
   stages.place = [](PlanInput sub, const Progress& p) {
     validate(sub);
-    Plan out;
-    const Pocket pocket = pocketOf(sub, out);  // may drop tools that fit nowhere
-    const std::vector<double> radii = radiiOf(sub.tools);
-    return placePlunges(sub, pocket.region, radii, pocket.core, p);
+    const Planned planned = pocketOf(sub);  // may leave out tools that fit nowhere
+    const Pocket& pocket = planned.pocket;
+    return placePlunges(planned.in, pocket.region, radiiOf(planned.in.tools), pocket.core, p);
   };
   return planWithToolSelection(in, stages, progress);
 }
@@ -790,15 +818,56 @@ Plan planWithTools(PlanInput in, const Progress& progress) { return planPlaced(s
 
 namespace {
 
-Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress& progress) {
+// The plunges in the posted order: each tool's tour, then (real plunge mills)
+// engagement limits and cores (positions and order grown together), flute
+// length (levels), holders and shanks kept clear of the part and the
+// standing material, in that order: plunges stop where they clear (holder.hpp).
+struct Posted {
+  HolderClearance holders;
+  int levels = 1;
+};
+
+Posted post(const Stages& job, const MotionOptions& motion, const std::vector<CutDisk>& disks) {
+  const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
+  progress.stage(share::kOrder, "ordering the plunges");
+  std::vector<Plunge> ordered = sequence(job, disks);
+  if (std::any_of(in.tools.begin(), in.tools.end(), [](const Tool& t) { return std::isfinite(engagementLimit(t)); })) {
+    progress.stage(share::kGrow, "growing the cut within the engagement limits");
+    HeightField stock = stockOf(in.tools, material, pocket.region);
+    ordered = growWithinLimits(pocket.region, depths, ordered, stock, engagementOptions(job));
+  }
+  Levels split = splitIntoLevels(ordered, motion);
+  return {clearHolders(split.plunges, tools, material, mountOf(job)), split.levels};
+}
+
+// Posted, and where holders stopped plunges, the tools they did not stop
+// cover what is left (reachWhereHeld), and all is posted again.
+Posted postReaching(const Stages& job, const MotionOptions& motion, std::vector<CutDisk> disks) {
+  Posted posted = post(job, motion, disks);
+  if (posted.holders.stops.empty()) return posted;
+  const std::vector<CutDisk> reach = reachWhereHeld(job, posted.holders);
+  if (reach.empty()) return posted;
+  disks.insert(disks.end(), reach.begin(), reach.end());
+  return post(job, motion, disks);
+}
+
+// What the final plunges cut and the stock they leave on the floor: measured
+// on another thread, with its own floor, while the motion is planned (the moves
+// between the plunges change neither where they cut nor how deep).
+struct Measures {
+  CoverResult cover;
+  FloorStockMeasure stock;
+};
+
+Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const Progress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
-  Plan out;
-  const Pocket pocket = pocketOf(in, out);
-  // The job's tools, once (pocketOf leaves out those that fit nowhere): every
-  // stage from here on knows a tool by its id.
+  const Planned planned = pocketOf(given);
+  const PlanInput& in = planned.in;
+  const Pocket& pocket = planned.pocket;
+  // The job's tools, once: every stage from here on knows a tool by its id.
   const ToolTable tools(in.tools);
   const Material material(in.material, in.topZ);  // what the operations before left
-  // The floor: flat, an expression or BREP faces (read before the long part).
+  // The floor: flat, an expression, a mesh or BREP faces (read before the long part).
   const std::unique_ptr<FloorSurface> floor = makeFloor(in);
   const Vec2 lo = pocket.region.minCorner(), hi = pocket.region.maxCorner();
   // Refused before the long part: its depths would take hours.
@@ -806,85 +875,88 @@ Plan planPlaced(PlanInput in, std::optional<CoverResult> placed, const Progress&
   progress.stage(share::kFloor, "analysing the floor");
   const DepthSolver depths(*floor, lo, hi, std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)),
                            progress);
-  out.stats.regionArea = poly::area(allowedRegion(pocket.region, in.radialAllowance));
-  const Stages job{in, tools, pocket, *floor, depths, progress, out.stats.regionArea};
-  Placed where = placeAndDepth(job, std::move(placed));
-  std::vector<CutDisk>& disks = where.disks;
-  const std::vector<Plunge> inAir = dropAirPlunges(in, material, tools, pocket.region, disks);
-  out.stats.airPlunges = static_cast<int>(inAir.size());
-  out.stats.restMaterial = material.known();
+  const double regionArea = poly::area(allowedRegion(pocket.region, in.radialAllowance));
+  const Stages job{in, tools, pocket, *floor, depths, material, progress, regionArea};
 
-  // The plunges in the posted order: each tool's tour, then (real plunge
-  // mills) engagement limits and cores (positions and order grown together),
-  // flute length (levels), holders and shanks kept clear of the part and the
-  // standing material, in that order: plunges stop where they clear (holder.hpp).
-  MotionOptions motion = motionOptions(in, tools, material, progress);
-  const HolderSettings mount{in.motion.holderClearance, dist(pocket.region.minCorner(), pocket.region.maxCorner())};
-  const bool limited = std::any_of(in.tools.begin(), in.tools.end(),
-                                   [](const Tool& t) { return std::isfinite(engagementLimit(t)); });
-  auto post = [&](const std::vector<CutDisk>& cut) {
-    out.plunges.clear();
-    progress.stage(share::kOrder, "ordering the plunges");
-    sequence(in, tools, cut, out, progress);
-    if (limited) {
-      progress.stage(share::kGrow, "growing the cut within the engagement limits");
-      HeightField stock = stockOf(in.tools, material, pocket.region);
-      out.plunges = growWithinLimits(pocket.region, depths, out.plunges, stock, engagementOptions(in, tools, material, progress));
-    }
-    return clearHolders(splitIntoLevels(out.plunges, motion, out.stats), tools, material, mount);
-  };
-  HolderClearance holders = post(disks);
-  // The tool that reaches: where holders stopped plunges, the tools they did
-  // not stop cover what is left, and all is posted again.
-  if (!holders.stops.empty()) {
-    const std::vector<CutDisk> reach = reachWhereHeld(in, tools, pocket.region, depths, holders);
-    if (!reach.empty()) {
-      disks.insert(disks.end(), reach.begin(), reach.end());
-      holders = post(disks);
-    }
-  }
-  out.plunges = std::move(holders.plunges);
-  const HolderLimits held = holderLimits(stillHeld(pocket, tools, holders.stops, out.plunges), tools, mount.clearance);
-  // Measured on the final plunges (the floor-stock step and the limits add to the
-  // covering's), on another thread with its own floor while the motion is
-  // planned: the moves between the plunges change neither where they cut nor
-  // how deep. Reported in the order of the stages.
-  struct Measures {
-    CoverResult cover;
-    FloorStockMeasure stock;
-  };
-  // The plunges left out in air count as cut: the material is gone there.
-  std::vector<Plunge> cutting = out.plunges;
-  cutting.insert(cutting.end(), inAir.begin(), inAir.end());
-  // It reads only its own copies and what no stage changes any more (the
-  // input, the pocket, the tools, the material): nothing of `out`, which the
-  // motion writes meanwhile.
-  auto measuring = std::async(std::launch::async, [&, plunges = std::move(cutting), own = floor->clone(),
-                                                   accessible = out.accessible, area = out.stats.regionArea] {
-    return Measures{coverOf(plunges, accessible, pocket.core),
-                    measureFloorStock(in, tools, pocket.region, *own, plunges, area, material, progress)};
+  // Where to plunge and how deep, then which plunges are left out in air.
+  const Placed where = placeAndDepth(job, std::move(placed));
+  const AirSplit air = dropAirPlunges(job, where.disks);
+  // In what order, as posted: levels, holders and the tool that reaches.
+  MotionOptions motion = motionOptions(job);
+  const Posted posted = postReaching(job, motion, air.cutting);
+  const std::vector<Plunge>& plunges = posted.holders.plunges;
+  const Said held = holderLimits(stillHeld(pocket, tools, posted.holders.stops, plunges), tools,
+                                 in.motion.holderClearance);
+  // Measured on the final plunges (the floor-stock step and the limits add to
+  // the covering's), the plunges left out in air counted as cut: the material
+  // is gone there. The thread reads its own copies and what no stage changes.
+  std::vector<Plunge> cutting = plunges;
+  cutting.insert(cutting.end(), air.inAir.begin(), air.inAir.end());
+  auto measuring = std::async(std::launch::async, [&job, cutting = std::move(cutting), own = floor->clone()] {
+    return Measures{coverOf(cutting, job.pocket.accessible, job.pocket.core), measureFloorStock(job, *own, cutting)};
   });
+  // The moves between them.
   progress.stage(share::kMotion, "heights and lead-outs");
   motion.progress = progress.sub(share::kMotion, share::kMeasure);
-  const size_t warned = out.warnings.size(), broken = out.broken.size();
-  planMotion(pocket.region, depths, out, motion);
+  Motion moves = planMotion(pocket.region, depths, plunges, motion);
   progress.stage(share::kMeasure, "measuring the stock left");
   const Measures measured = progress.await(measuring);
-  // The motion's warnings after the coverage's.
-  std::vector<std::string> motionWarnings(out.warnings.begin() + warned, out.warnings.end());
-  std::vector<BrokenLimit> motionBroken(out.broken.begin() + broken, out.broken.end());
-  out.warnings.resize(warned);
-  out.broken.resize(broken);
-  coverageStats(in, pocket.region, measured.cover, out);
-  wallBandAboveStats(in, tools, out);
-  out.warnings.insert(out.warnings.end(), motionWarnings.begin(), motionWarnings.end());
-  out.broken.insert(out.broken.end(), motionBroken.begin(), motionBroken.end());
-  for (size_t k = 0; k < held.broken.size(); ++k) sayBroken(out, held.said[k], held.broken[k]);
-  for (std::string& w : uncheckedHolders(out.plunges, tools, in.topZ)) out.warnings.push_back(std::move(w));
-  reportFloorStock(in, measured.stock, out, floorStockWhy(where));
-  countPlunges(in, out);
-  depthFallbacks(in, depths, out);
-  out.stats.planningSeconds = secondsSince(t0);
+  const Coverage coverage = coverageOf(job, measured.cover);
+  const PlungeCounts counts = countPlunges(in, moves.plunges);
+  const int fallbacks = depths.peakFallbacks() + depths.depthFallbacks();
+
+  // The plan, assembled once; what the stages said, in their order.
+  Plan out;
+  Said said = planned.said;
+  said += coverage.said;
+  said += wallBandAboveSaid(job, moves.plunges);
+  said += moves.said;
+  said += held;
+  for (std::string& w : uncheckedHolders(moves.plunges, tools, in.topZ)) said.warn(std::move(w));
+  said += floorStockSaid(in, measured.stock, floorStockWhy(where));
+  said += depthFallbacksSaid(in, fallbacks);
+  out.warnings = std::move(said.warnings);
+  out.broken = std::move(said.broken);
+  out.accessible = pocket.accessible;
+  out.uncovered = measured.cover.uncovered;
+  out.stockMap = measured.stock.map;
+  PlanStats& st = out.stats;
+  st.plungeCount = counts.plungeCount;
+  st.perTool = counts.perTool;
+  st.startHoles = counts.startHoles;
+  st.floorStockPlunges = counts.floorStockPlunges;
+  st.regionArea = regionArea;
+  st.accessibleArea = measured.cover.accessibleArea;
+  st.coveredArea = measured.cover.coveredArea;
+  st.coverage = coverage.coverage;
+  st.hexReferenceCount = coverage.hexReferenceCount;
+  st.coreArea = coverage.coreArea;
+  st.coreCoverage = coverage.coreCoverage;
+  st.maxWallStockLeft = coverage.maxWallStockLeft;
+  const StockReport& stock = measured.stock.report;
+  st.maxFloorStockLeft = stock.maxFloorStock;
+  st.meanFloorStock = stock.meanFloorStock;
+  st.volumeRemoved = stock.volumeRemoved;
+  st.volumeLeft = stock.volumeLeft;
+  st.volumeBefore = stock.volumeBefore;
+  st.airPlunges = static_cast<int>(air.inAir.size());
+  st.restMaterial = material.known();
+  st.levels = posted.levels;
+  const MotionStats& m = moves.stats;
+  st.overEngaged = m.overEngaged;
+  st.thinCuts = m.thinCuts;
+  st.peckedPlunges = m.peckedPlunges;
+  st.leadOuts = m.leadOuts;
+  st.raisedLeadOuts = m.raisedLeadOuts;
+  st.noLeadOutMaterial = m.noLeadOutMaterial;
+  st.noLeadOutWalls = m.noLeadOutWalls;
+  st.travelLength = m.travelLength;
+  st.estimatedMinutes = m.estimatedMinutes;
+  st.minutesAtSafeHeight = m.minutesAtSafeHeight;
+  st.boundaryTolerance = planned.tolerance;
+  st.depthFallbacks = fallbacks;
+  out.plunges = std::move(moves.plunges);
+  st.planningSeconds = secondsSince(t0);
   return out;
 }
 

@@ -496,8 +496,8 @@ void reportSearch(const PlanInput& in, ToolSelection& sel, size_t setCount) {
 }  // namespace
 
 Plan planWithToolSelection(const PlanInput& in, const ToolSetStages& stages, const Progress& progress) {
-  double tolerance = 0.0;  // large boundaries: the medial axis of simplified walls (limits.hpp)
-  const Region region = planningRegion(in, tolerance);
+  // Large boundaries: the medial axis of simplified walls (limits.hpp).
+  const Region region = planningRegion(in).region;
   ToolSelection sel = describePocket(in, region);
   sel.candidates = candidateTools(in, region, sel);
   ToolSetSearch search(in, region, sel, stages, progress);

@@ -123,9 +123,9 @@ TEST(Motion, EveryOtherLevelStartsWhereTheOneAboveEnded) {
     box.o.tools = ToolTable({t});
     std::vector<Plunge> row;
     for (double x : {15.0, 35.0, 55.0, 75.0}) row.push_back(plungeOf(box.o.tools.all().front(), {x, 30.0}, -20.0));
-    PlanStats stats;
-    const std::vector<Plunge> levels = splitIntoLevels(row, box.o, stats);
-    ASSERT_EQ(stats.levels, 2);
+    const Levels split = splitIntoLevels(row, box.o);
+    const std::vector<Plunge>& levels = split.plunges;
+    ASSERT_EQ(split.levels, 2);
     ASSERT_EQ(levels.size(), 8u);
     for (size_t k = 0; k < 4; ++k) {
       EXPECT_EQ(levels[k].level, 0);
@@ -145,9 +145,8 @@ TEST(Motion, OnItsOwnOptions) {
   const Region& region = box.region;
   const DepthSolver& depths = box.depths;
   const MotionOptions& o = box.o;
-  Plan plan;
-  plan.plunges = {plungeOf(o.tools.byId(1), {30, 30}, -20), plungeOf(o.tools.byId(1), {38, 30}, -20)};
-  planMotion(region, depths, plan, o);
+  const Motion plan =
+      planMotion(region, depths, {plungeOf(o.tools.byId(1), {30, 30}, -20), plungeOf(o.tools.byId(1), {38, 30}, -20)}, o);
   const Plunge &a = plan.plunges[0], &b = plan.plunges[1];
   EXPECT_DOUBLE_EQ(a.approachZ, o.material.topZ() + o.settings.rapidClearance);  // uncut stock under the first
   EXPECT_DOUBLE_EQ(a.retractZ, o.material.topZ() + o.settings.rapidClearance);   // the stock along the move is top_z
@@ -159,7 +158,7 @@ TEST(Motion, OnItsOwnOptions) {
   EXPECT_NEAR(b.engagement, 8.0, 2 * stockOf(o.tools.all(), o.material, region).spacing());
   EXPECT_EQ(plan.stats.leadOuts + plan.stats.noLeadOutMaterial + plan.stats.noLeadOutWalls, 2);
   EXPECT_NEAR(plan.stats.travelLength, dist(a.leadOut ? *a.leadOut : Vec2{30, 30}, {38, 30}), 1e-9);
-  EXPECT_EQ(plan.stats.estimatedMinutes, motionMinutes(plan, o, false));
+  EXPECT_EQ(plan.stats.estimatedMinutes, motionMinutes(plan.plunges, o, false));
 }
 
 // A plunge deeper than the six around it sits in a ring of their steps: its
@@ -171,19 +170,21 @@ TEST(Motion, ALeadOutRisesOutOfTheStepsAround) {
   const DepthSolver& depths = box.depths;
   const MotionOptions& o = box.o;
   for (double step : {0.8, 1.5}) {
-    Plan plan;
+    std::vector<Plunge> ring;
     for (int k = 0; k < 6; ++k)
-      plan.plunges.push_back(
+      ring.push_back(
           plungeOf(o.tools.byId(1), Vec2{50, 30} + Vec2{std::cos(k * kPi / 3), std::sin(k * kPi / 3)} * 9.0, -20 + step));
-    plan.plunges.push_back(plungeOf(o.tools.byId(1), {50, 30}, -20));
-    planMotion(region, depths, plan, o);
+    ring.push_back(plungeOf(o.tools.byId(1), {50, 30}, -20));
+    const Motion moved = planMotion(region, depths, ring, o);
+    Plan plan;
+    plan.plunges = moved.plunges;
     const Plunge& deep = plan.plunges.back();
     if (step <= o.settings.leadOut) {
       ASSERT_TRUE(deep.leadOut && deep.leadOutZ);
       EXPECT_NEAR(dist(*deep.leadOut, {50, 30}), o.settings.leadOut, 1e-9);
       EXPECT_GE(*deep.leadOutZ, -20 + step - 1e-9);  // clear of the steps
       EXPECT_LE(*deep.leadOutZ, -20 + step + 0.01);  // and no higher than they need
-      EXPECT_EQ(plan.stats.raisedLeadOuts, 1);
+      EXPECT_EQ(moved.stats.raisedLeadOuts, 1);
       PlanInput in;
       in.tools = o.tools.all();
       const std::string g = planToGcode(in, plan), feedDown = "G1 Z-20.0000 F150.0000\nG1 Z";
@@ -193,10 +194,10 @@ TEST(Motion, ALeadOutRisesOutOfTheStepsAround) {
       EXPECT_EQ(g.substr(g.find('\n', at + feedDown.size()) + 1, 4), "G1 X");
     } else {
       EXPECT_FALSE(deep.leadOut);  // the steps are higher than the lead-out is long
-      EXPECT_EQ(plan.stats.raisedLeadOuts, 0);
-      EXPECT_GE(plan.stats.noLeadOutMaterial, 1);
+      EXPECT_EQ(moved.stats.raisedLeadOuts, 0);
+      EXPECT_GE(moved.stats.noLeadOutMaterial, 1);
     }
-    EXPECT_EQ(plan.stats.estimatedMinutes, motionMinutes(plan, o, false));
+    EXPECT_EQ(moved.stats.estimatedMinutes, motionMinutes(moved.plunges, o, false));
   }
 }
 
@@ -273,15 +274,14 @@ TEST(Motion, SaysEveryLimitItBreaks) {
   core.centerCutting = false;
   core.coreDiameter = 5;
   box.o.tools = ToolTable({t, core});
-  Plan plan;
   const Tool& a = box.o.tools.byId(1);
-  plan.plunges = {plungeOf(a, {18, 30}, -10), plungeOf(a, {40, 30}, -10),  // two holes: a ridge 2 mm wide
-                  plungeOf(a, {29, 30}, -10),                                // along it: its length, not its width
-                  plungeOf(a, {29, 31}, -10),                                // a sliver
-                  plungeOf(a, {70, 30}, -20),                                // 20 mm deep: the flutes are 15
-                  plungeOf(box.o.tools.byId(2), {70, 50}, -5)};              // a core onto solid
-  plan.plunges[0].start = plan.plunges[1].start = plan.plunges[4].start = true;
-  planMotion(box.region, box.depths, plan, box.o);
+  std::vector<Plunge> ps = {plungeOf(a, {18, 30}, -10), plungeOf(a, {40, 30}, -10),  // two holes: a ridge 2 mm wide
+                            plungeOf(a, {29, 30}, -10),                  // along it: its length, not its width
+                            plungeOf(a, {29, 31}, -10),                  // a sliver
+                            plungeOf(a, {70, 30}, -20),                  // 20 mm deep: the flutes are 15
+                            plungeOf(box.o.tools.byId(2), {70, 50}, -5)};  // a core onto solid
+  ps[0].start = ps[1].start = ps[4].start = true;
+  const Said plan = planMotion(box.region, box.depths, ps, box.o).said;
   std::map<std::string, BrokenLimit> said;
   for (const BrokenLimit& b : plan.broken) said[b.limit] = b;
   ASSERT_EQ(said.count("max_engagement"), 1u);
