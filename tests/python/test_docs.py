@@ -66,3 +66,54 @@ def test_every_doc_picture_is_made_again_by_the_gui_test():
     names = [line.split()[0] for line in table.splitlines() if line.strip()]
     assert len(names) == len(set(names)), names
     assert sorted(names) == sorted(os.listdir(os.path.join(ROOT, "docs", "images")))
+
+
+# What the planner can say (docs/troubleshooting.md, "Limits a plan cannot
+# keep"): each phrase is in the planner's source and on the page, so that a
+# line of the report view leads to its row. The phrases are the messages'
+# fixed words; the reasons ("why") after the worst place are listed too.
+SAID = [
+    "places the plunges of",
+    "plunges cut a wider band than their tool's max engagement",
+    "plunges cut a narrower band than their tool's min engagement",
+    "plunges of a non-centre-cutting tool have material under the core",
+    "plunges cut deeper than their tool's flute length",
+    "mm of stock stay above the floor, more than the",
+    "mm from the walls uncut",
+    "mm of stock stay on the walls, more than the",
+    "% of the reachable floor, less than the",
+    "tools too large for the pocket, not used: ",
+    "the depth search ran out of its budget on",
+    "no stick_out is given: what holds it is not checked",
+    "the floor rises and falls faster than the plungers follow",
+    "the final depth stops plunges above the floor",
+    "no plunger of the job fits there down to that height",
+    "the walls lean in below that height",
+    "slivers between the plunges along the walls",
+    "no plunger of the job reaches there",
+    "finer than any plunger or depth search can follow",
+]
+# The places in cpp/src that say something (Said::warn, Said::limit, the
+# motion's counts): a new one needs its phrase above and its row on the page.
+SAYING = re.compile(r"\.(?:warn|limit)\(|_\.say\(")
+SAYING_PLACES = 16
+
+
+def planner_source():
+    """cpp/src's text with adjacent string literals joined ("a" "b" -> "ab")."""
+    src = os.path.join(ROOT, "cpp", "src")
+    text = "".join(open(os.path.join(src, f)).read() for f in sorted(os.listdir(src)) if f.endswith(".cpp"))
+    return re.sub(r'"\s*\n\s*"', "", text)
+
+
+def test_every_warning_of_the_planner_has_its_troubleshooting_row():
+    source = planner_source()
+    page = open(os.path.join(DOCS, "troubleshooting.md")).read()
+    assert [p for p in SAID if p not in source] == [], "no longer said by the planner: update SAID and the page"
+    assert [p for p in SAID if p not in page] == [], "said by the planner, missing from docs/troubleshooting.md"
+    places = [f for f in sorted(os.listdir(os.path.join(ROOT, "cpp", "src")))
+              if f.endswith(".cpp") and f != "broken.cpp"
+              for _ in SAYING.finditer(open(os.path.join(ROOT, "cpp", "src", f)).read())]
+    assert len(places) == SAYING_PLACES, (
+        "the planner says something in a new place (%s): give it a row in docs/troubleshooting.md and its phrase "
+        "in SAID, then count it here" % sorted(set(places)))
