@@ -5,7 +5,7 @@ the same tools and against covering to 99.6 % (max_wall_stock 0): plunges, core
 coverage, thickest wall stock; then the sculptured floors with and without the
 floor-stock step in Z (max_floor_stock 1 mm): floor stock, volume left, plunges added.
 
-    /usr/bin/python3 tests/bench/bench_stock.py
+    /usr/bin/python3 tests/bench/bench_stock.py     # PLUNGE_BUILD_DIR: another build tree
 """
 import json
 import os
@@ -13,7 +13,7 @@ import subprocess
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-CLI = os.path.join(ROOT, "build", "cpp", "plunge-rough")
+CLI = os.path.join(os.environ.get("PLUNGE_BUILD_DIR", os.path.join(ROOT, "build")), "cpp", "plunge-rough")
 SHAPES = os.path.join(ROOT, "tests", "data", "shapes")
 EXAMPLES = os.path.join(ROOT, "resources", "examples")
 

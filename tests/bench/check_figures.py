@@ -2,14 +2,18 @@
 beside them, and fails when one has drifted beyond its noise.
 
     python3 tests/bench/check_figures.py            # runs the Adaptive bench (about a minute)
-    python3 tests/bench/check_figures.py OUTPUT     # or reads a saved run's output
 
 Checked: docs/benchmarks.md's "Against FreeCAD's Adaptive" tables (every
 Plunge Rough time and plunge count, every ratio) and the README's table of
 ratios, against tests/bench/bench_vs_adaptive.py. Plunge Rough's plans are
 deterministic: its minutes must agree to 0.01 min. Adaptive's paths vary a
-little from run to run, so a ratio may move by 3 %. The planning seconds are
-not checked: they are this machine's.
+little from run to run, so a ratio may move by 3 %. And the "Stock left"
+tables, every cell but the planning time, against tests/bench/bench_stock.py
+(about 20 s; deterministic, so exactly as printed), with the README's plunge
+counts of the plate and the sculptured example. The planning seconds are not
+checked: they are this machine's.
+
+    python3 tests/bench/check_figures.py ADAPTIVE_OUTPUT STOCK_OUTPUT   # both saved
 """
 import os
 import re
@@ -84,11 +88,45 @@ def compare_readme(fresh, readme, problems):
                 problems.append("README: %s, model %s: %s, fresh %.3f" % (r[0], model, cell, ratio[key]))
 
 
+STOCK_TABLES = ["| shape | plan | plunges |", "| floor | floor-stock step |"]
+
+
+def fresh_stock():
+    run = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "tests", "bench", "bench_stock.py")],
+                         capture_output=True, text=True, cwd=ROOT, timeout=600)
+    if run.returncode != 0 or STOCK_TABLES[0] not in run.stdout:
+        sys.exit("the stock bench failed:\n" + run.stdout[-2000:] + run.stderr[-2000:])
+    return run.stdout
+
+
+def compare_stock(fresh, page, readme, problems):
+    """The stock tables, row by row (shape and plan), every cell but the last
+    (the planning time); and the README's plunge counts of the plate and the
+    sculptured example, which are the tables' 1 mm band and 1 mm floor-stock rows."""
+    for header in STOCK_TABLES:
+        table = {tuple(r[:2]): r for r in rows(fresh, header)}
+        for r in rows(page, header):
+            f = table.get(tuple(r[:2]))
+            if f is None or f[:-1] != r[:-1]:
+                problems.append("benchmarks.md: %s, %s: %s, fresh %s" % (r[0], r[1], r[2:-1], f[2:-1] if f else "none"))
+    counts = {r[0]: r[2] for r in rows(fresh, STOCK_TABLES[0]) if r[1] == "1 mm band"}
+    counts.update({r[0]: r[2].split()[0] for r in rows(fresh, STOCK_TABLES[1]) if r[1] == "1 mm"})
+    for r in rows(readme, "| planning | plunges |"):
+        key = ("benchmark" if "600 x 400" in r[0] else
+               "example sculptured (expression)" if "example's sculptured" in r[0] else None)
+        if key and counts.get(key) != r[1]:
+            problems.append("README: %s: %s plunges, fresh %s" % (r[0], r[1], counts.get(key)))
+
+
 def main():
-    fresh = open(sys.argv[1]).read() if len(sys.argv) > 1 else fresh_output()
+    adaptive = open(sys.argv[1]).read() if len(sys.argv) > 1 else fresh_output()
+    stock = open(sys.argv[2]).read() if len(sys.argv) > 2 else fresh_stock()
     problems = []
-    compare(fresh, open(os.path.join(ROOT, "docs", "benchmarks.md")).read(), problems)
-    compare_readme(fresh, open(os.path.join(ROOT, "README.md")).read(), problems)
+    page = open(os.path.join(ROOT, "docs", "benchmarks.md")).read()
+    readme = open(os.path.join(ROOT, "README.md")).read()
+    compare(adaptive, page, problems)
+    compare_readme(adaptive, readme, problems)
+    compare_stock(stock, page, readme, problems)
     for p in problems:
         print(p)
     print("figures checked against a fresh run: %s" % ("all hold" if not problems else "%d drifted" % len(problems)))
