@@ -204,14 +204,15 @@ std::vector<CutDisk> depthsOf(const PlanInput& in, const CoverResult& cover, con
 // Execution order: tools largest first, each tool's plunges as a short open path
 // starting nearest to where the previous tool ended.
 std::vector<Plunge> sequence(const Stages& job, const std::vector<CutDisk>& disks) {
-  const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
+  const PlanInput& in = job.in;
+  const Progress& progress = job.progress;  // (a lambda captures it: no structured binding)
   std::vector<Plunge> out;
   Vec2 at = in.motion.start ? *in.motion.start : in.boundary.front();
   TourOptions to;
   to.method = in.motion.sequencing;
   to.seed = in.seed;
   to.poll = [&progress] { progress.tick(); };
-  for (const Tool& tool : tools.all()) {
+  for (const Tool& tool : job.tools.all()) {
     std::vector<const CutDisk*> mine;
     std::vector<Vec2> pts;
     for (const CutDisk& d : disks)
@@ -634,7 +635,8 @@ AirSplit dropAirPlunges(const Stages& job, const std::vector<CutDisk>& disks) {
   const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
   if (!material.known()) return {disks, {}};
   const double band = in.radialAllowance + in.covering.maxWallStock;
-  auto counts = [&](Vec2 p) { return pocket.region.contains(p) && pocket.region.wallDistance(p, band) >= band; };
+  const Region& region = pocket.region;  // (the lambda captures it: no structured binding)
+  auto counts = [&region, band](Vec2 p) { return region.contains(p) && region.wallDistance(p, band) >= band; };
   AirSplit out;
   for (const CutDisk& d : disks) {
     if (material.cutsAny(d.center, cutterOf(tools.byId(d.toolId)), d.z, counts))
