@@ -14,7 +14,7 @@ import subprocess
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-CLI = os.path.join(ROOT, "build", "cpp", "plunge-rough")
+CLI = os.path.join(os.environ.get("PLUNGE_BUILD_DIR", os.path.join(ROOT, "build")), "cpp", "plunge-rough")
 SHAPES = {name: os.path.join(ROOT, "tests", "data", "shapes", name + ".json")
           for name in ("benchmark", "convex", "concave", "islands", "freeform", "neck")}
 SHAPES["example pocket"] = os.path.join(ROOT, "resources", "examples", "pocket.json")
@@ -24,6 +24,8 @@ SHAPES["FreeCAD demo"] = os.path.join(ROOT, "out", "demo_input.json")
 
 def plan(path, limit, tmp):
     data = json.load(open(path))
+    if data["tools"] == "auto":  # the demo's operation chooses: it plans every plunger of its library
+        data["tools"] = data.pop("tool_library")
     if limit:
         for t in data["tools"]:
             t["max_engagement"] = limit * t["diameter"]
