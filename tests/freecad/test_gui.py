@@ -121,6 +121,30 @@ def test_the_session_ran_without_errors(result):
     assert result["svg_images"]  # FreeCAD's check marks and icons are drawn (resources/setup.sh)
 
 
+def test_the_readmes_demo_figures_are_the_demos(result, out):
+    """The README's figures of both demos come from this run of them: the
+    first demo's plunges (the headline table), the deep pocket's plunges,
+    levels and minutes. Measured on FreeCAD 0.20 (this project's machine): a
+    newer FreeCAD's part modelling may shift a plunge, so elsewhere only that
+    the figures are there."""
+    import FreeCAD
+    readme = open(os.path.join(ROOT, "README.md")).read()
+    demo = re.search(r"^\| FreeCAD demo \([^|]*\| (\d+) \|", readme, re.M)
+    deep = re.search(r"the deep die pocket[^|]*: (\d+) plunges of a 20 mm plunger, (\d+) levels, about ([\d.]+) min",
+                     readme)
+    assert demo and deep, "the README's demo figures moved: update this test"
+    if FreeCAD.Version()[:2] != ["0", "20"]:
+        pytest.skip("the README's figures are FreeCAD 0.20's")
+    example = os.path.join(out, "example")
+    first = open(os.path.join(example, "summary.txt")).read().splitlines()[1]
+    assert first.startswith(demo.group(1) + " plunges ("), (demo.group(0), first)
+    summary = open(os.path.join(example, "deep_pocket_summary.txt")).read()
+    minutes = float(re.search(r"about ([\d.]+) min", summary).group(1))
+    assert re.search(r"\b%s plunges \(T\d+ 20 mm: %s\)" % (deep.group(1), deep.group(1)), summary), summary
+    assert "%s levels (flute length)" % deep.group(2) in summary, summary
+    assert abs(minutes - float(deep.group(3))) <= 0.05, (deep.group(0), minutes)
+
+
 def test_example_document_is_a_gui_document(result):
     """Made by the main command's script in the GUI: a Job tree, the operation's
     own view provider and panel, tool bits as wide as their diameters."""
