@@ -16,17 +16,17 @@ using namespace plunge;
 
 namespace {
 
-// A 60 x 40 mm pocket over an expression floor, a first covering of 10 mm
+// A w x h mm pocket over an expression floor, a first covering of 10 mm
 // ball plungers every 6 mm (no gaps) at their exact stop heights, and the grid they cut.
 struct Wavy {
-  explicit Wavy(const char* expression)
+  Wavy(const char* expression, double w, double h)
       : floor(makeExpressionFloor(expression)),
-        region(Loop{{0, 0}, {60, 0}, {60, 40}, {0, 40}}, {}),
+        region(Loop{{0, 0}, {w, 0}, {w, h}, {0, h}}, {}),
         depths(*floor, region.minCorner(), region.maxCorner(), 0.5),
         tools(std::vector<Tool>{ball(1, 10.0), ball(2, 4.0)}),
         grid(region, *floor, {0.0, 0.0, 0.0, 0.5}) {
-    for (double x = 5; x < 56; x += 6)
-      for (double y = 5; y < 36; y += 6) {
+    for (double x = 5; x < region.maxCorner().x - 4; x += 6)
+      for (double y = 5; y < region.maxCorner().y - 4; y += 6) {
         const Cutter c = cutterOf(tools.all().front());
         const CutDisk d{{x, y}, 1, depths.plungeHeight({x, y}, c, 0.0, 0.0)};
         grid.cut(d, c);
@@ -64,7 +64,7 @@ struct Wavy {
 }  // namespace
 
 TEST(FloorStock, BringsAFollowableFloorUnderTheLimit) {
-  Wavy job("-10 + 1.5*sin(x/4)*cos(y/5)");
+  Wavy job("-10 + 1.5*sin(x/4)*cos(y/5)", 42, 30);
   const double before = job.maxStock();
   ASSERT_GT(before, 0.5);
   const FloorStockResult r = job.step(kFloorStockSearches);
@@ -79,7 +79,7 @@ TEST(FloorStock, BringsAFollowableFloorUnderTheLimit) {
 TEST(FloorStock, StopsAtItsBudgetOnAFloorNoPlungerFollows) {
   // 0.6 mm waves 2 mm deep (sin(x*10)): every sample stays over the limit, and
   // without the budget the step searched for minutes.
-  Wavy job("-10 + sin(x*10)");
+  Wavy job("-10 + sin(x*10)", 24, 16);  // small: every depth search on it is slow
   const FloorStockResult r = job.step(40);
   EXPECT_TRUE(r.outOfBudget);
   // It stops before the next sample once the budget is spent: at most one
@@ -88,7 +88,7 @@ TEST(FloorStock, StopsAtItsBudgetOnAFloorNoPlungerFollows) {
   EXPECT_LE(r.searches, 40 + 2 * 25);
   EXPECT_GT(job.maxStock(), 0.5);
   // The same input, the same step.
-  Wavy again("-10 + sin(x*10)");
+  Wavy again("-10 + sin(x*10)", 24, 16);
   const FloorStockResult s = again.step(40);
   EXPECT_EQ(s.searches, r.searches);
   ASSERT_EQ(s.added.size(), r.added.size());
