@@ -7,11 +7,12 @@
 #   sh resources/bundle.sh linux     # -> dist/PlungeRough-linux-x86_64.zip
 #   sh resources/bundle.sh windows   # -> dist/PlungeRough-windows-x86_64.zip (MinGW-w64)
 #
-# Runs as root on Debian 12 or 13 and installs what it needs (idempotent).
-# Clipper and muParser, which Debian ships only as shared Linux libraries,
-# are built here from Debian's own source packages (apt-get source, with a
-# package list of its own: the machine's apt configuration stays as it is);
-# the header-only libraries are Debian's. Nothing else is downloaded.
+# Runs as root on Debian 12, 13 or testing and installs what it needs
+# (idempotent). Clipper and muParser, which Debian ships only as shared Linux
+# libraries, are built here from Debian's own source packages, from the first
+# suite that serves them whole (resources/debian_sources.sh); the header-only
+# libraries are Debian's. Nothing else is downloaded. What the program was
+# built from is in the bundle's PlungeRough/bin/build-info.txt.
 # build-bundle/ keeps the sources and builds for the next run.
 set -eu
 PLATFORM=${1:-}
@@ -32,23 +33,20 @@ install_missing cmake make g++ binutils dpkg-dev python3 libboost-dev libcgal-de
 
 WORK=$ROOT/build-bundle
 OUT=$WORK/$PLATFORM
-mkdir -p "$WORK/sources" "$OUT"
+mkdir -p "$OUT"
 
-# Debian's source packages of Clipper and muParser, for this machine's release.
-sources() { ls -d "$WORK"/sources/libpolyclipping-*/ "$WORK"/sources/muparser-*/ 2>/dev/null | wc -l; }
-if [ "$(sources)" -ne 2 ]; then
-  codename=$(. /etc/os-release && echo "$VERSION_CODENAME")
-  apt=$WORK/apt
-  mkdir -p "$apt/lists/partial" "$apt/cache/archives/partial"
-  echo "deb-src [signed-by=/usr/share/keyrings/debian-archive-keyring.gpg] $(mirror) $codename main" \
-    >"$apt/sources.list"
-  set -- -o Dir::Etc::SourceList="$apt/sources.list" -o Dir::Etc::SourceParts="$apt/none" \
-    -o Dir::State::Lists="$apt/lists" -o Dir::Cache="$apt/cache" -o APT::Sandbox::User=root
-  echo "bundle: Debian's sources of Clipper and muParser ($codename)"
-  apt-get "$@" -qq update
-  (cd "$WORK/sources" && apt-get "$@" -qq source libpolyclipping-dev muparser >/dev/null)
-  rm -rf "$apt"
-  [ "$(sources)" -eq 2 ] || die "apt-get source did not unpack libpolyclipping and muparser"
+# Debian's source packages of Clipper and muParser: this machine's release's,
+# or the first stable one's that the archive serves whole
+# (resources/debian_sources.sh says which; ORIGIN records it).
+if [ ! -s "$WORK/sources/ORIGIN" ] || [ "$(ls -d "$WORK"/sources/libpolyclipping-*/ "$WORK"/sources/muparser-*/ 2>/dev/null | wc -l)" -ne 2 ]; then
+  rm -rf "$WORK/sources" "$WORK"/*/deps  # the libraries built from older sources too
+  echo "bundle: Debian's sources of Clipper and muParser"
+  sh "$ROOT/resources/debian_sources.sh" "$WORK/sources" libpolyclipping-dev muparser | sed 's/^/bundle: /'
+  [ -s "$WORK/sources/ORIGIN" ] || die "no Debian sources of Clipper and muParser (resources/debian_sources.sh)"
+else
+  while read -r _ source version suite; do
+    echo "bundle: Debian's $source $version, from $suite (build-bundle/sources)"
+  done <"$WORK/sources/ORIGIN"
 fi
 CLIPPER=$(ls -d "$WORK"/sources/libpolyclipping-*/ | head -n1)
 MUPARSER=$(ls -d "$WORK"/sources/muparser-*/ | head -n1)
@@ -99,6 +97,18 @@ else
     esac
   done
 fi
+# What the program was built from: the user's answer to "which build is this".
+{
+  echo "PlungeRough's planner for $PLATFORM x86-64: $EXE"
+  echo "commit: $(git -C "$ROOT" rev-parse HEAD 2>/dev/null || echo unknown)"
+  echo "built on: $(. /etc/os-release && echo "$PRETTY_NAME"), $($CXX --version | head -n1)"
+  while read -r _ source version suite; do
+    echo "from Debian's sources: $source $version ($suite), built static here"
+  done <"$WORK/sources/ORIGIN"
+  for p in libboost-dev libcgal-dev libeigen3-dev nlohmann-json3-dev libcli11-dev; do
+    echo "header-only, Debian's: $p $(dpkg-query -W -f='${Version}' "$p")"
+  done
+} >"$STAGE/PlungeRough/bin/build-info.txt"
 find "$STAGE" -name __pycache__ -prune -exec rm -rf {} +
 find "$STAGE" \( -name '*.so' -o -name '*.so.*' -o -name '*.pyd' \) | grep -q . && die "a compiled module in the bundle"
 
