@@ -41,7 +41,7 @@ mkdir -p "$OUT"
 if [ ! -s "$WORK/sources/ORIGIN" ] || [ "$(ls -d "$WORK"/sources/libpolyclipping-*/ "$WORK"/sources/muparser-*/ 2>/dev/null | wc -l)" -ne 2 ]; then
   rm -rf "$WORK/sources" "$WORK"/*/deps  # the libraries built from older sources too
   echo "bundle: Debian's sources of Clipper and muParser"
-  sh "$ROOT/resources/debian_sources.sh" "$WORK/sources" libpolyclipping-dev muparser | sed 's/^/bundle: /'
+  sh "$ROOT/resources/debian_sources.sh" "$WORK/sources" libpolyclipping muparser | sed 's/^/bundle: /'
   [ -s "$WORK/sources/ORIGIN" ] || die "no Debian sources of Clipper and muParser (resources/debian_sources.sh)"
 else
   while read -r _ source version suite; do

@@ -3,7 +3,7 @@
 # (Clipper and muParser, for the bundles' static programs: resources/bundle.sh),
 # each from the first suite whose archive serves it whole.
 #
-#   sh resources/debian_sources.sh DEST PACKAGE...
+#   sh resources/debian_sources.sh DEST SOURCE-PACKAGE...
 #
 # The suites, in order: this machine's release, then the stable ones down to
 # bookworm (forky: forky trixie bookworm; trixie: trixie bookworm). The
@@ -46,8 +46,11 @@ rm -rf "$APT"
 trap 'rm -rf "$APT"' EXIT
 
 # SUITE's deb-src as apt's only list, its index fetched once; says why not.
+# No dpkg status either: apt would look for the source of the version this
+# machine has installed (trixie's 6.4.2-8+b1), which another suite lacks.
 opts() { echo "-o Dir::Etc::SourceList=$APT/$1/sources.list -o Dir::Etc::SourceParts=$APT/$1/none \
-  -o Dir::State::Lists=$APT/$1/lists -o Dir::Cache=$APT/$1/cache -o APT::Sandbox::User=root"; }
+  -o Dir::State::Lists=$APT/$1/lists -o Dir::Cache=$APT/$1/cache -o Dir::State::status=/dev/null \
+  -o APT::Sandbox::User=root"; }
 indexed() {  # indexed SUITE
   dir=$APT/$1
   [ ! -e "$dir/updated" ] || return 0
