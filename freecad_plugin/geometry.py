@@ -195,7 +195,9 @@ class _Shadows:
         spatial, deviation = _chords(e, self.tolerance)
         self.deviation = max(self.deviation, deviation)
         points = [V(p.x, p.y, 0) for p in spatial]
-        points[0], points[-1] = ends[0], (ends[-1] if len(ends) > 1 else ends[0])
+        # The chords run along the curve's parameter; a reversed edge lists its
+        # vertices the other way round: each end snaps to its nearest vertex.
+        points[0], points[-1] = (min(ends, key=lambda v: (v - p).Length) for p in (points[0], points[-1]))
         chord = ends[-1] - ends[0]
         if chord.Length > 1e-9 and all(abs(chord.cross(p - ends[0]).z) / chord.Length < 1e-7 for p in points):
             return Part.makeLine(ends[0], ends[-1])  # a curve in a vertical plane
@@ -237,6 +239,7 @@ class Pocket:
         self.open_sides = 0   # runs of open edges on the outline
         self.holes = 0        # open holes roughed to the floor's height
         self.kept_walls = 0   # open sides kept as walls: part material within reach past them
+        self.deeper = 0.0     # mm^2 of the cavity without a floor face under it, roughed at the floor's height
         self.lowest = 0.0     # lowest point of the floor
         self.tolerance = 0.01  # chord tolerance
         self.shadow = None    # the floor's outline in plan view, exact (a face at z = 0)
@@ -252,6 +255,9 @@ class Pocket:
         if self.holes:
             out.append("%d hole%s where the part goes deeper roughed at the floor's height"
                        % (self.holes, "s" if self.holes > 1 else ""))
+        if self.deeper:
+            out.append("the cavity around the floor planned whole: %.0f mm2 over a window or a deeper part roughed at "
+                       "the floor's height" % self.deeper)
         if self.kept_walls:
             out.append("%d open side%s kept as walls (the part is within reach past them)"
                        % (self.kept_walls, "s" if self.kept_walls > 1 else ""))
@@ -310,6 +316,15 @@ def _segment_open(loop, walls, opened, tolerance):
         d_wall = wall_shadow.distToShape(m)[0] if wall_shadow else math.inf
         out.append(d_open < d_wall and d_open <= tolerance + 1e-5)
     return out
+
+
+def _outer_wire(face):
+    """The face's outer boundary: the wire enclosing the most area. Not
+    Face.OuterWire, which on a cut face can be an island's."""
+    wires = face.Wires
+    if len(wires) == 1:
+        return wires[0]
+    return max(wires, key=lambda w: abs(Part.Face(w).Area))
 
 
 def _upward(face):
@@ -386,24 +401,37 @@ def pocket(selection, tolerance, include_fillets=True, margin=1.5, model=None):
         raise GeometryError("%s has no area under it: select the pocket's floor" % selection[0][0])
     union = flats[0].multiFuse(flats[1:]) if len(flats) > 1 else flats[0]
     union = union.removeSplitter()
-    if len(union.Faces) != 1:
-        raise GeometryError("the selected faces (%s) make %d separate floors, not one pocket: select the floor "
-                            "faces of one pocket (one operation per pocket)"
-                            % (", ".join(n for n, _ in selection), len(union.Faces)))
-    shadow = union.Faces[0]
-    result.shadow = shadow
+    pieces = _pieces(union.Faces)
     walls, opened = _classify_edges(model, floor, shadows) if model is not None else ([], [])
-    boundary, result.deviation = _polyline(shadow.OuterWire, tolerance)
-    if len(boundary) < 3 or abs(_signed_area(boundary)) < 1e-9:
-        raise GeometryError("%s has no area under it: select the pocket's floor" % selection[0][0])
-    if _signed_area(boundary) < 0:
-        boundary.reverse()
-    result.deviation = max(result.deviation, shadows.deviation)
     top = model.BoundBox.ZMax if model is not None else 0.0
     result.lowest = min(f.BoundBox.ZMin for f in floor)
     open_z = min([e.BoundBox.ZMin for e, _ in opened], default=result.lowest)
+    result.deviation = shadows.deviation
+    shadow = _one_face(pieces[0]) if len(pieces) == 1 else None
+    is_open = []
+    if shadow is not None:
+        outer = _outer_wire(shadow)
+        boundary, deviation = _polyline(outer, tolerance)
+        result.deviation = max(result.deviation, deviation)
+        if len(boundary) < 3 or abs(_signed_area(boundary)) < 1e-9:
+            raise GeometryError("%s has no area under it: select the pocket's floor" % selection[0][0])
+        if _signed_area(boundary) < 0:
+            boundary.reverse()
+        is_open = _segment_open(boundary, walls, opened, tolerance)
+    # Floor faces apart, or an outline that steps down (a window, a trough
+    # beside the floor): the pocket is the part's cavity around them, when it
+    # is one, closed all round.
+    if model is not None and (shadow is None or any(is_open)):
+        cavity = _cavity(model, floor, union)
+        if cavity is not None:
+            return _cavity_pocket(result, cavity, union, open_z)
+    if shadow is None:
+        raise GeometryError("the selected faces (%s) make %d separate floors, not one pocket: select the floor "
+                            "faces of one pocket (one operation per pocket)"
+                            % (", ".join(n for n, _ in selection), len(pieces)))
+    result.shadow = shadow
     for w in shadow.Wires:
-        if w.isSame(shadow.OuterWire):
+        if w.isSame(outer):
             continue
         loop, deviation = _polyline(w, tolerance)
         result.deviation = max(result.deviation, deviation)
@@ -416,10 +444,80 @@ def pocket(selection, tolerance, include_fillets=True, margin=1.5, model=None):
             result.caps.append(hole)
         else:
             result.islands.append(loop)
-    is_open = _segment_open(boundary, walls, opened, tolerance)
     if any(is_open):
         boundary = _open_sides(result, model, boundary, is_open, margin, open_z, top)
     result.boundary = boundary
+    return result
+
+
+def _pieces(faces):
+    """The faces in groups that touch (a shadow split by the fuse is one piece)."""
+    groups = []
+    for f in faces:
+        touching = [g for g in groups if any(f.distToShape(h)[0] < 1e-6 for h in g)]
+        merged = [f] + [h for g in touching for h in g]
+        groups = [g for g in groups if not any(g is t for t in touching)] + [merged]
+    return groups
+
+
+def _one_face(faces):
+    """Touching faces of one plane as one face, or None where they stay apart."""
+    if len(faces) == 1:
+        return faces[0]
+    fused = faces[0].fuse(faces[1:]).removeSplitter()
+    return _upward(fused.Faces[0]) if len(fused.Faces) == 1 else None
+
+
+def _cavity(model, floor, union):
+    """The part's cavity the floor faces lie in, just above the highest of them
+    (a face of the air there, closed all round), or None where they lie in no
+    one closed cavity."""
+    z = max(f.BoundBox.ZMax for f in floor) + 0.01
+    points = [_face_point(f) for f in union.Faces]
+    air = _air_at(model, z, points[0])
+    if air is None:
+        return None
+    if not all(air.isInside(V(p.x, p.y, z), 1e-6, True) for p in points[1:]):
+        return None
+    return air
+
+
+def _face_point(face):
+    """A point of a flat face (its largest triangle's centre)."""
+    points, triangles = face.tessellate(0.1)
+    if not triangles:
+        raise GeometryError("a selected face's outline does not close around an area (its edges cross): select the "
+                            "pocket's floor faces again, or refine the part (Part > Refine shape)")
+    a, b, c = max(triangles, key=lambda t: abs((points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).z))
+    return (points[a] + points[b] + points[c]) * (1.0 / 3.0)
+
+
+def _cavity_pocket(result, air, union, z):
+    """The pocket as the part's cavity `air` (a face at some height): its
+    outline and islands; what of it no floor face lies under (a window, a
+    trough, the gap between two floor faces) is roughed at the floor's height z."""
+    flat = air.copy()
+    flat.translate(V(0, 0, -air.BoundBox.ZMin))
+    outer = _outer_wire(flat)
+    boundary, deviation = _polyline(outer, result.tolerance)
+    if _signed_area(boundary) < 0:
+        boundary.reverse()
+    result.deviation = max(result.deviation, deviation)
+    for w in flat.Wires:
+        if w.isSame(outer):
+            continue
+        loop, deviation = _polyline(w, result.tolerance)
+        result.deviation = max(result.deviation, deviation)
+        if len(loop) >= 3:
+            result.islands.append(loop)
+    for f in flat.cut(union).Faces:
+        if f.Area > 1e-6:
+            cap = _upward(f)
+            result.deeper += cap.Area
+            cap.translate(V(0, 0, z))
+            result.caps.append(cap)
+    result.boundary = boundary
+    result.shadow = flat
     return result
 
 
@@ -435,7 +533,7 @@ def _open_sides(result, model, boundary, is_open, margin, z, top):
             continue
         extra = grown.cut(region)
         if _air_above(model, extra, z + 0.01, top):
-            loop, _ = _polyline(grown.Faces[0].OuterWire, result.tolerance)
+            loop, _ = _polyline(_outer_wire(grown.Faces[0]), result.tolerance)
             if _signed_area(loop) < 0:
                 loop.reverse()
             for f in extra.Faces:
@@ -464,6 +562,42 @@ def floor_spec(pocket, final_depth, workdir=None, floors=("z", "brep")):
     path = os.path.join(workdir, "floor.brep")
     compound.exportBrep(path)
     return {"brep": path}
+
+def part_mesh(model, pocket, reach=1.0):
+    """The planner's "part" (docs/plan-format.md): every face of the part but
+    the floor's that comes within `reach` of the pocket's outline in plan view
+    and above its lowest point, as triangles at the chord tolerance, each with
+    its measured deviation. The planner keeps every stop off them (a tab or a
+    dome over the floor, a neighbour's face), and takes what of them hangs
+    over the floor out of the pocket. None without a part."""
+    if model is None:
+        return None
+    xs = [p[0] for p in pocket.boundary]
+    ys = [p[1] for p in pocket.boundary]
+    top = model.BoundBox.ZMax
+    box = FreeCAD.BoundBox(min(xs) - reach, min(ys) - reach, pocket.lowest - reach,
+                           max(xs) + reach, max(ys) + reach, top + reach)
+    floor = [f for _, f in pocket.faces]
+    faces = [f for f in model.Faces
+             if f.BoundBox.intersect(box) and f.BoundBox.ZMax > pocket.lowest + 1e-6
+             and not any(f.isSame(g) for g in floor)]
+    if not faces:
+        return None
+    deflection = max(pocket.tolerance, 1e-3)
+    vertices, triangles, deviations = [], [], []
+    for face in faces:
+        P, T, off = floor_mesh.face_mesh(face, deflection, math.inf)
+        # The measure in the surface's parameters overstates the distance
+        # where they crowd (a sphere's poles): there, the distance itself.
+        for t in (i for i in range(len(T)) if off[i] > 4 * deflection):
+            a, b, c = (FreeCAD.Vector(*P[k]) for k in T[t])
+            off[t] = max(face.distToShape(Part.Vertex(p))[0] for p in ((a + b + c) / 3, (a + b) / 2, (b + c) / 2,
+                                                                      (c + a) / 2))
+        triangles.extend((T + len(vertices)).tolist())
+        vertices.extend(P.tolist())
+        deviations.extend((off * floor_mesh.MARGIN).tolist())
+    return {"vertices": vertices, "triangles": triangles, "deviation": deviations}
+
 
 def distance(a, b):
     return math.hypot(a[0] - b[0], a[1] - b[1])
@@ -530,9 +664,7 @@ def _inside_point(boundary, islands):
     region = _polygon_face(boundary)
     if islands:
         region = region.cut([_polygon_face(i) for i in islands])
-    points, triangles = region.tessellate(0.1)
-    a, b, c = max(triangles, key=lambda t: abs((points[t[1]] - points[t[0]]).cross(points[t[2]] - points[t[0]]).z))
-    return (points[a] + points[b] + points[c]) * (1.0 / 3.0)
+    return _face_point(region)
 
 
 def _air_at(model, z, at):
@@ -568,7 +700,8 @@ def sections(model, pocket, top, band):
             continue  # open there, or no wider than the floor's outline or the section below
         below = air.Area
         loops = []
-        for w in [air.OuterWire] + [w for w in air.Wires if not w.isSame(air.OuterWire)]:
+        outer = _outer_wire(air)
+        for w in [outer] + [w for w in air.Wires if not w.isSame(outer)]:
             loop, d = _polyline(w, pocket.tolerance)
             deviation = max(deviation, d)
             loops.append(loop)

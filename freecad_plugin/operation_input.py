@@ -109,4 +109,4 @@ def build_input(obj, tcs, faces, workdir, notes=None, floors=("z", "brep")):
         # Rapids and retracts at the first plunger's rapid rates, as the post runs them.
         tools.time_model(tcs[0], settings.tool_change_time),
         pocket.boundary, pocket.islands, geometry.floor_spec(pocket, settings.final_depth, workdir, floors),
-        sections, max(deviation, pocket.deviation), material)
+        sections, max(deviation, pocket.deviation), material, geometry.part_mesh(model, pocket))

@@ -71,12 +71,14 @@ def check(settings, tool_lengths):
         raise ValueError("the start depth must be above the final depth")
 
 
-def plan_input(settings, tools, time_model, boundary, islands, floor, sections=(), deviation=0.0, material=None):
+def plan_input(settings, tools, time_model, boundary, islands, floor, sections=(), deviation=0.0, material=None,
+               part=None):
     """The plan input. tools: the plungers' specs, largest first (tools.spec);
     time_model: the first plunger's rapid rates (tools.time_model); boundary,
     islands, floor, sections: the pocket (geometry.py), whose chords lie up to
     `deviation` mm off its walls; material: what the operations before left
-    (rest.material), or None for solid stock from the start depth."""
+    (rest.material), or None for solid stock from the start depth; part: the
+    part's faces around the pocket as a mesh (geometry.part_mesh), or None."""
     data = {
         "version": 1,
         "boundary": boundary,
@@ -105,6 +107,8 @@ def plan_input(settings, tools, time_model, boundary, islands, floor, sections=(
         data["sections"] = list(sections)
     if material is not None:
         data["material"] = material
+    if part is not None:
+        data["part"] = {"mesh": part}
     if settings.dwell > 0 and not settings.canned_cycle:
         data["peck_dwell"] = settings.dwell
     if settings.peck_depth > 0:

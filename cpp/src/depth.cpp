@@ -100,8 +100,9 @@ double cornerMaximum(const std::function<double(Vec2)>& lift, Vec2 c, const Cutt
 
 }  // namespace
 
-DepthSolver::DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spacing, const Progress& progress)
-    : floor_(floor), spacing_(spacing) {
+DepthSolver::DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spacing, const Progress& progress,
+                         std::shared_ptr<const FloorSurface> part)
+    : floor_(floor), part_(std::move(part)), spacing_(spacing) {
   if (floor.isFlat()) return;
   PeakSearch found = floor.peaks(lo, hi, spacing, progress);
   peaks_ = std::move(found.points);
@@ -109,6 +110,16 @@ DepthSolver::DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spa
 }
 
 double DepthSolver::stopHeight(Vec2 c, const Cutter& cutter) const {
+  return std::max(floorStopHeight(c, cutter), partStopHeight(c, cutter));
+}
+
+double DepthSolver::partStopHeight(Vec2 c, const Cutter& cutter) const {
+  if (!part_) return -kInf;
+  const std::optional<double> z = part_->exactStopHeight(c, cutter);
+  return z && std::isfinite(*z) ? *z : -kInf;
+}
+
+double DepthSolver::floorStopHeight(Vec2 c, const Cutter& cutter) const {
   if (floor_.isFlat()) return floor_.height(c);
   if (const std::optional<double> z = floor_.exactStopHeight(c, cutter)) {  // a mesh: drop-cutter
     if (!std::isfinite(*z)) throw Error("no floor under the plunge at " + formatPoint(c));
@@ -165,17 +176,25 @@ double DepthSolver::plungeHeight(Vec2 c, const Cutter& cutter, double floorAllow
   // pass leaves it: the cutter offset by it in every direction (its tip that
   // much lower) touches the floor where the cutter keeps it. Added vertically
   // instead, a slope of angle t would keep only cos(t) of it.
-  const double z = floor_.isFlat() || floorAllowance <= 0.0
-                       ? stopHeight(c, cutter) + floorAllowance
-                       : stopHeight(c, grownAround(cutter, floorAllowance)) + floorAllowance;
-  if (floor_.isFlat() || radialAllowance <= 0.0) return z;
+  const Cutter around = floorAllowance > 0.0 ? grownAround(cutter, floorAllowance) : cutter;
+  double z = floor_.isFlat() ? floorStopHeight(c, cutter) + floorAllowance
+                             : floorStopHeight(c, around) + floorAllowance;
   // Beside the cutter the floor keeps the radial allowance: the cutter grown
   // sideways by it (a flat one wider, a ball or bull nose with a flat of the
   // allowance at its centre) must not touch the floor either. Where the floor
   // rises more than the floor allowance within the radial allowance beyond the
   // rim (a fillet rising into its wall) this holds the cutter up; a step
   // between two selected levels becomes a wall of the lower one.
-  return std::max(z, stopHeight(c, grownSideways(cutter, radialAllowance)));
+  if (!floor_.isFlat() && radialAllowance > 0.0)
+    z = std::max(z, floorStopHeight(c, grownSideways(cutter, radialAllowance)));
+  // The part keeps both allowances too: a face of it over the pocket that no
+  // outline shows (an overhang's underside beside the cutter, a neighbour's
+  // floor) holds the cutter up before it enters.
+  if (part_) {
+    z = std::max(z, partStopHeight(c, around) + floorAllowance);
+    if (radialAllowance > 0.0) z = std::max(z, partStopHeight(c, grownSideways(cutter, radialAllowance)));
+  }
+  return z;
 }
 
 double DepthSolver::plungeHeightAtLeast(Vec2 c, const Cutter& cutter, double floorAllowance,

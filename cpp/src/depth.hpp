@@ -38,14 +38,19 @@ class DepthSolver {
  public:
   // Finds the floor's peaks over [lo, hi], resolving features down to `spacing`
   // (ticking `progress`, which may cancel).
-  DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spacing, const Progress& progress = {});
+  // `part`: the part's triangles within reach of the pocket (part.hpp), when
+  // given: every height below is the higher of the floor's and the part's,
+  // the allowances kept from both.
+  DepthSolver(const FloorSurface& floor, Vec2 lo, Vec2 hi, double spacing, const Progress& progress = {},
+              std::shared_ptr<const FloorSurface> part = nullptr);
   // The same solver over another instance of the same floor (a clone, for
-  // another thread): the peaks are not searched again.
+  // another thread): the peaks are not searched again (the part's mesh reads
+  // from any thread).
   DepthSolver(const FloorSurface& floor, const DepthSolver& like)
-      : floor_(floor), spacing_(like.spacing_), peaks_(like.peaks_), peakFallbacks_(like.peakFallbacks_),
-        depthFallbacks_(like.depthFallbacks_) {}
-  // Tip height at which the cutter at `center` first touches the floor (no allowance).
-  // Throws plunge::Error when no floor is under the cutter.
+      : floor_(floor), part_(like.part_), spacing_(like.spacing_), peaks_(like.peaks_),
+        peakFallbacks_(like.peakFallbacks_), depthFallbacks_(like.depthFallbacks_) {}
+  // Tip height at which the cutter at `center` first touches the floor or the
+  // part (no allowance). Throws plunge::Error when no floor is under the cutter.
   double stopHeight(Vec2 center, const Cutter& cutter) const;
   // Where a plunge at `center` stops: `floorAllowance` above the floor under the
   // cutter, and `radialAllowance` from the floor beside it (the cutter grown
@@ -73,8 +78,11 @@ class DepthSolver {
   int depthFallbacks() const { return *depthFallbacks_; }
 
  private:
+  double floorStopHeight(Vec2 center, const Cutter& cutter) const;
+  double partStopHeight(Vec2 center, const Cutter& cutter) const;  // -inf without a part under the cutter
   double searchedStopHeight(Vec2 center, const Cutter& cutter, bool& converged) const;
   const FloorSurface& floor_;
+  std::shared_ptr<const FloorSurface> part_;
   double spacing_;
   std::vector<Vec3> peaks_;
   int peakFallbacks_ = 0;

@@ -223,36 +223,37 @@ MaterialGrid materialFromValue(const json& j) {
 
 namespace {
 
-// "floor": {"mesh": {"vertices": [[x, y, z], ...], "triangles": [[i, j, k], ...],
-// "deviation": mm, or [mm, ...] one per triangle}}; the indices and the
-// deviations' count are checked by the floor itself (mesh_floor.hpp).
-FloorMesh readMesh(const json& m) {
-  if (!m.is_object()) throw Error("floor.mesh: expected {\"vertices\", \"triangles\", \"deviation\"}");
-  onlyKeys(m, {"vertices", "triangles", "deviation"}, "floor.mesh: ");
-  for (const char* key : {"vertices", "triangles", "deviation"})
-    if (!m.contains(key)) throw Error(std::string("floor.mesh.") + key + ": required");
-  FloorMesh mesh;
+// "floor" or "part": {"mesh": {"vertices": [[x, y, z], ...], "triangles":
+// [[i, j, k], ...], "deviation": mm, or [mm, ...] one per triangle}} (key:
+// "floor.mesh" or "part.mesh"); the indices and the deviations' count are
+// checked where the mesh is made a surface (mesh_floor.hpp checkMesh).
+TriangleMesh readMesh(const json& m, const std::string& key) {
+  if (!m.is_object()) throw Error(key + ": expected {\"vertices\", \"triangles\", \"deviation\"}");
+  onlyKeys(m, {"vertices", "triangles", "deviation"}, key + ": ");
+  for (const char* field : {"vertices", "triangles", "deviation"})
+    if (!m.contains(field)) throw Error(key + "." + field + ": required");
+  TriangleMesh mesh;
   // One distance for every triangle, or a list of one per triangle.
   const json& dev = m["deviation"];
   mesh.deviation.clear();
   if (dev.is_array()) {
-    for (const json& v : dev) mesh.deviation.push_back(number(v, "floor.mesh.deviation"));
+    for (const json& v : dev) mesh.deviation.push_back(number(v, key + ".deviation"));
   } else {
-    mesh.deviation.push_back(number(dev, "floor.mesh.deviation"));
+    mesh.deviation.push_back(number(dev, key + ".deviation"));
   }
   const json& vs = m["vertices"];
-  if (!vs.is_array()) throw Error("floor.mesh.vertices: expected a list of [x, y, z]");
+  if (!vs.is_array()) throw Error(key + ".vertices: expected a list of [x, y, z]");
   mesh.vertices.reserve(vs.size());
   for (size_t i = 0; i < vs.size(); ++i) {
-    const std::string what = "floor.mesh.vertices[" + std::to_string(i) + "]";
+    const std::string what = key + ".vertices[" + std::to_string(i) + "]";
     if (!vs[i].is_array() || vs[i].size() != 3) throw Error(what + ": expected [x, y, z]");
     mesh.vertices.push_back({number(vs[i][0], what), number(vs[i][1], what), number(vs[i][2], what)});
   }
   const json& ts = m["triangles"];
-  if (!ts.is_array()) throw Error("floor.mesh.triangles: expected a list of [i, j, k] vertex indices");
+  if (!ts.is_array()) throw Error(key + ".triangles: expected a list of [i, j, k] vertex indices");
   mesh.triangles.reserve(ts.size());
   for (size_t i = 0; i < ts.size(); ++i) {
-    const std::string what = "floor.mesh.triangles[" + std::to_string(i) + "]";
+    const std::string what = key + ".triangles[" + std::to_string(i) + "]";
     if (!ts[i].is_array() || ts[i].size() != 3) throw Error(what + ": expected [i, j, k]");
     std::array<std::uint32_t, 3> t{};
     for (size_t k = 0; k < 3; ++k) {
@@ -280,7 +281,7 @@ Floor readFloor(const json& j) {
     floor.expression = stringOf(f["expression"], "floor.expression");
   } else if (f.contains("mesh")) {
     floor.kind = Floor::Kind::Mesh;
-    floor.mesh = readMesh(f["mesh"]);
+    floor.mesh = readMesh(f["mesh"], "floor.mesh");
   } else {
     if (!f["brep"].is_string()) throw Error("floor.brep: expected a file name");
     floor.kind = Floor::Kind::Brep;
@@ -393,7 +394,7 @@ PlanInput planInputFromValue(const json& j) {
             "min_coverage", "contact_ratio", "packing_order", "growth_pattern", "sequencing", "start",
             "tool_library", "selection", "time_model", "grid", "max_wall_stock", "max_floor_stock", "lead_out",
             "stock_aware_heights", "rapid_clearance", "holder_clearance", "max_plunges", "final_depth", "peck", "peck_dwell",
-            "sections", "material", "coolant"},
+            "sections", "material", "coolant", "part"},
            "input: ");
   PlanInput in;
   if (j.contains("version") && !(j["version"].is_number_integer() && j["version"].get<long long>() == 1))
@@ -425,6 +426,12 @@ PlanInput planInputFromValue(const json& j) {
     }
   }
   if (j.contains("material")) in.material = materialFromValue(j["material"]);
+  if (j.contains("part")) {
+    const json& part = j["part"];
+    if (!part.is_object() || part.size() != 1 || !part.contains("mesh"))
+      throw Error("part: expected {\"mesh\": {\"vertices\", \"triangles\", \"deviation\"}}");
+    in.part = readMesh(part["mesh"], "part.mesh");
+  }
   readTools(j, in);
   in.floor.surface = readFloor(j);
   readOptionObjects(j, in);

@@ -111,7 +111,7 @@ using Entry = std::pair<Box, std::uint32_t>;
 
 class MeshFloor : public FloorSurface {
  public:
-  explicit MeshFloor(const FloorMesh& mesh) {
+  explicit MeshFloor(const TriangleMesh& mesh) {
     auto built = std::make_shared<Data>();
     Data& d = *built;
     d.deviation = mesh.deviation.size() == 1 ? std::vector<double>(mesh.triangles.size(), mesh.deviation[0])
@@ -214,24 +214,33 @@ class MeshFloor : public FloorSurface {
 
 }  // namespace
 
-std::unique_ptr<FloorSurface> makeMeshFloor(const FloorMesh& mesh) {
-  if (mesh.triangles.empty()) throw Error("floor.mesh.triangles: at least one triangle is needed");
+void checkMesh(const TriangleMesh& mesh, const std::string& key) {
+  if (mesh.triangles.empty()) throw Error(key + ".triangles: at least one triangle is needed");
   if (mesh.triangles.size() > kMaxTriangles)
-    throw Error("floor.mesh.triangles: " + std::to_string(mesh.triangles.size()) + " triangles, more than " +
-                std::to_string(kMaxTriangles) + ": tessellate the floor more coarsely");
+    throw Error(key + ".triangles: " + std::to_string(mesh.triangles.size()) + " triangles, more than " +
+                std::to_string(kMaxTriangles) + ": tessellate the faces more coarsely");
   if (mesh.deviation.size() != 1 && mesh.deviation.size() != mesh.triangles.size())
-    throw Error("floor.mesh.deviation: expected one distance, or one per triangle (" +
+    throw Error(key + ".deviation: expected one distance, or one per triangle (" +
                 std::to_string(mesh.triangles.size()) + "), not " + std::to_string(mesh.deviation.size()));
   for (double d : mesh.deviation)
-    if (!std::isfinite(d) || d < 0) throw Error("floor.mesh.deviation: expected distances of 0 or more (mm)");
+    if (!std::isfinite(d) || d < 0) throw Error(key + ".deviation: expected distances of 0 or more (mm)");
   for (size_t i = 0; i < mesh.vertices.size(); ++i)
     for (double v : mesh.vertices[i])
-      if (!std::isfinite(v)) throw Error("floor.mesh.vertices[" + std::to_string(i) + "]: not a finite point");
+      if (!std::isfinite(v)) throw Error(key + ".vertices[" + std::to_string(i) + "]: not a finite point");
   for (size_t i = 0; i < mesh.triangles.size(); ++i)
     for (std::uint32_t k : mesh.triangles[i])
       if (k >= mesh.vertices.size())
-        throw Error("floor.mesh.triangles[" + std::to_string(i) + "]: vertex " + std::to_string(k) +
+        throw Error(key + ".triangles[" + std::to_string(i) + "]: vertex " + std::to_string(k) +
                     " does not exist (" + std::to_string(mesh.vertices.size()) + " vertices)");
+}
+
+std::unique_ptr<FloorSurface> makeMeshFloor(const TriangleMesh& mesh) {
+  checkMesh(mesh, "floor.mesh");
+  return std::make_unique<MeshFloor>(mesh);
+}
+
+std::unique_ptr<FloorSurface> makeMeshSurface(const TriangleMesh& mesh) {
+  if (mesh.triangles.empty()) return nullptr;
   return std::make_unique<MeshFloor>(mesh);
 }
 

@@ -11,6 +11,7 @@
 // triangle, so a stop is never below the true one.
 #pragma once
 #include <memory>
+#include <string>
 
 #include "depth.hpp"
 #include "floor.hpp"
@@ -20,8 +21,12 @@ namespace plunge {
 
 // Throws plunge::Error naming what is wrong with the mesh (indices out of
 // range, values not finite, no triangle, a negative deviation, deviations
-// neither one nor one per triangle).
-std::unique_ptr<FloorSurface> makeMeshFloor(const FloorMesh& mesh);
+// neither one nor one per triangle), the input's key first ("floor.mesh").
+void checkMesh(const TriangleMesh& mesh, const std::string& key);
+std::unique_ptr<FloorSurface> makeMeshFloor(const TriangleMesh& mesh);
+// The same surface of a checked mesh (the part's triangles within reach,
+// part.hpp); none without a triangle.
+std::unique_ptr<FloorSurface> makeMeshSurface(const TriangleMesh& mesh);
 
 // The tip height at which `cutter` over `center` first touches the triangles
 // (a, b, c), without deviation; -inf when none is under the cutter. Exact up to

@@ -26,6 +26,7 @@
 #include "grid.hpp"
 #include "mesh_floor.hpp"
 #include "packing.hpp"
+#include "part.hpp"
 #include "polygon.hpp"
 #include "region.hpp"
 #include "selection.hpp"
@@ -552,6 +553,12 @@ Planned pocketOf(const PlanInput& given) {
   return out;
 }
 
+// The part's triangles within reach of the pocket (part.hpp), as a surface
+// the depths read; none when no triangle reaches in.
+std::shared_ptr<const FloorSurface> partSurface(const TriangleMesh& part, const Region& region) {
+  return makeMeshSurface(partInReach(part, region.polygons(), partMargin(part)));
+}
+
 // The wall band above the floor: where the pocket is wider at a height than
 // at its floor (sections: fillets and corner blends that are walls, drafted
 // walls), the plunges through that height are covered up to the section's
@@ -809,6 +816,9 @@ Plan plan(PlanInput in, const Progress& progress) {
   progress.stage(share::kCheck, "checking the pocket");
   if (in.choice.automatic) in.tools = in.choice.library;
   validate(in);
+  // The pocket without what of the part overhangs its floor (part.hpp), for
+  // every tool set the choice tries too; what is left under it is said first.
+  if (in.part) in = withoutOverhangs(std::move(in), *makeFloor(in));
   const std::vector<std::string> notes = in.notes;
   Plan out = in.choice.automatic ? planChoosingTools(in, progress) : planWithTools(std::move(in), progress);
   out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
@@ -875,8 +885,9 @@ Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const
   // Refused before the long part: its depths would take hours.
   if (const std::string why = floor->unfollowable(lo, hi); !why.empty()) throw Error(why);
   progress.stage(share::kFloor, "analysing the floor");
+  // The part around the pocket, where given: every depth reads it too.
   const DepthSolver depths(*floor, lo, hi, std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)),
-                           progress);
+                           progress, in.part ? partSurface(*in.part, pocket.region) : nullptr);
   const double regionArea = poly::area(allowedRegion(pocket.region, in.radialAllowance));
   const Stages job{in, tools, pocket, *floor, depths, material, progress, regionArea};
 

@@ -72,9 +72,19 @@ std::string choiceSummary(const ToolSelection& sel) {
   if (!library->refused.empty()) return s.str() + " (the whole library cannot be planned)";
   const double chosenEstimate = chosen->evaluated ? chosen->estimate : chosen->minutes;
   s.str("");
-  s << "plungers chosen: " << names(sel.chosen) << " of " << names(library->diameters) << "; left out " << names(left) << ", which saves about " << std::fixed
-    << std::setprecision(1) << library->minutes - chosenEstimate << " min by the estimate"
-    << (library->plunges > 0 ? "" : " (at least: its lower bound)");
+  s << "plungers chosen: " << names(sel.chosen) << " of " << names(library->diameters) << "; left out " << names(left)
+    << std::fixed << std::setprecision(1);
+  // Said as it is: a saving, no difference (rounded to 0.1 min: never "-0.0"),
+  // or an estimate above the whole library's plan (the choice ranks estimates).
+  const double saves = library->minutes - chosenEstimate;
+  if (saves >= 0.05)
+    s << ", which saves about " << saves << " min by the estimate"
+      << (library->plunges > 0 ? "" : " (at least: its lower bound)");
+  else if (saves > -0.05)
+    s << ", which takes as long by the estimate, with fewer tools";
+  else
+    s << ", whose estimate is about " << -saves << " min above the whole library's plan (the choice ranks the"
+      << " estimates)";
   return s.str();
 }
 

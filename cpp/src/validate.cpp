@@ -10,6 +10,7 @@
 #include "plunge/error.hpp"
 #include "grid.hpp"
 #include "limits.hpp"
+#include "mesh_floor.hpp"
 #include "region.hpp"
 #include "plunge/tools.hpp"
 
@@ -115,6 +116,7 @@ void validateHeights(const PlanInput& in) {
       throw Error(name + ": " + e.what());
     }
   }
+  if (in.part) checkMesh(*in.part, "part.mesh");
   if (in.floor.finalDepth) {
     requireFinite(*in.floor.finalDepth, "final_depth");
     if (*in.floor.finalDepth + in.floorAllowance >= in.topZ)

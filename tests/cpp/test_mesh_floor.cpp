@@ -37,8 +37,8 @@ double bowl(double x, double y) { return -20 + 4 * std::sin(0.08 * x) * std::cos
 const char* kBowl = "-20 + 4*sin(0.08*x)*cos(0.06*y) + 0.01*x*y/10";
 
 // The bowl on a grid of `h` mm over [0, w] x [0, d], two triangles a cell.
-FloorMesh gridMesh(double w, double d, double h, double deviation) {
-  FloorMesh m;
+TriangleMesh gridMesh(double w, double d, double h, double deviation) {
+  TriangleMesh m;
   const int nx = static_cast<int>(std::round(w / h)), ny = static_cast<int>(std::round(d / h));
   for (int j = 0; j <= ny; ++j)
     for (int i = 0; i <= nx; ++i) m.vertices.push_back({i * h, j * h, bowl(i * h, j * h)});
@@ -86,7 +86,7 @@ TEST(MeshFloor, DropOnAPlaneIsTheClosedForm) {
 }
 
 TEST(MeshFloor, HeightIsTheTrianglesAndNaNBesideThem) {
-  FloorMesh m;
+  TriangleMesh m;
   m.vertices = {{0, 0, 0}, {10, 0, 10}, {0, 10, 20}};
   m.triangles = {{0, 1, 2}};
   const auto floor = makeMeshFloor(m);
@@ -117,7 +117,7 @@ TEST(MeshFloor, StopsNeverBelowTheSurfaceItWasMadeFromAndCloseAboveIt) {
 TEST(MeshFloor, DeviationKeepsTheCutterOffInEveryDirection) {
   // On a 45 degree slope the mesh raised by its deviation keeps the ball that
   // much off the plane along its normal: the stop is deviation / cos higher.
-  FloorMesh m;
+  TriangleMesh m;
   m.vertices = {{-50, -50, -50}, {50, -50, 50}, {0, 50, 0}};
   m.triangles = {{0, 1, 2}};
   const Cutter ball{CutterShape::Ball, 5, 5};
@@ -130,7 +130,7 @@ TEST(MeshFloor, DeviationKeepsTheCutterOffInEveryDirection) {
 
 TEST(MeshFloor, EachTriangleKeepsItsOwnDeviation) {
   // Two triangles side by side: the raise over each is its own.
-  FloorMesh m;
+  TriangleMesh m;
   m.vertices = {{0, 0, 0}, {20, 0, 0}, {20, 20, 0}, {0, 20, 0}, {40, 0, 0}, {40, 20, 0}};
   m.triangles = {{0, 1, 2}, {0, 2, 3}, {1, 4, 5}, {1, 5, 2}};
   m.deviation = {0.01, 0.01, 0.2, 0.2};
@@ -143,7 +143,7 @@ TEST(MeshFloor, EachTriangleKeepsItsOwnDeviation) {
 }
 
 TEST(MeshFloor, RefusesBadMeshes) {
-  FloorMesh m;
+  TriangleMesh m;
   m.vertices = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}};
   EXPECT_THROW(makeMeshFloor(m), Error);  // no triangle
   m.triangles = {{0, 1, 3}};
@@ -161,7 +161,7 @@ TEST(MeshFloor, RefusesBadMeshes) {
 TEST(MeshFloor, PlansThroughTheCallsWithEveryPlungeAboveTheTrueFloor) {
   // The bowl as a plan's mesh floor: no stop below the true surface plus the
   // floor allowance, measured by brute force on the expression.
-  const FloorMesh fm = gridMesh(100, 80, 0.5, 0.002);
+  const TriangleMesh fm = gridMesh(100, 80, 0.5, 0.002);
   nlohmann::json mesh{{"deviation", fm.deviation[0]}, {"vertices", fm.vertices}, {"triangles", fm.triangles}};
   nlohmann::json input{{"version", 1},
                        {"boundary", {{5, 5}, {95, 5}, {95, 75}, {5, 75}}},

@@ -92,6 +92,9 @@ SAID = [
     "slivers between the plunges along the walls",
     "no plunger of the job reaches there",
     "finer than any plunger or depth search can follow",
+    "part material overhangs the pocket above its floor",
+    "it also parts the pocket",
+    "the part hangs over the whole floor",
 ]
 # The places in cpp/src that say something (Said::warn, Said::limit, the
 # motion's counts): a new one needs its phrase above and its row on the page.

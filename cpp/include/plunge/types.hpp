@@ -104,11 +104,12 @@ struct SelectionOptions {
 
 // --- the input -----------------------------------------------------------------
 
-// A floor given as triangles (the FreeCAD addon's tessellation of the selected
-// faces): vertices (x, y, z), triangles as three vertex indices, and how far
-// the true surface may lie from them: one distance for every triangle, or one
-// per triangle. Every stop is kept that much further off (mesh_floor.hpp).
-struct FloorMesh {
+// Faces given as triangles (the FreeCAD addon's tessellation): the floor's
+// ("floor": {"mesh"}) or the part's around the pocket ("part": {"mesh"}).
+// Vertices (x, y, z), triangles as three vertex indices, and how far the true
+// surface may lie from them: one distance for every triangle, or one per
+// triangle. Every stop is kept that much further off (mesh_floor.hpp).
+struct TriangleMesh {
   std::vector<std::array<double, 3>> vertices;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<double> deviation{0.0};
@@ -119,7 +120,7 @@ struct Floor {
   double z = 0.0;
   std::string expression;
   std::string brep;  // a BREP file; a relative path starts at PlanInput::baseDir (resolveInputPath)
-  FloorMesh mesh;
+  TriangleMesh mesh;
 };
 
 // The pocket's cross-section at a height above its floor, where it is wider
@@ -221,6 +222,9 @@ struct PlanInput {
   std::vector<Loop> islands;
   double topZ = 0.0;
   std::optional<MaterialGrid> material;  // what the operations before left (material.hpp)
+  // "part": {"mesh"}: the part's faces within reach of the pocket (part.hpp):
+  // no stop enters them, and what of them overhangs the floor no plunge goes under.
+  std::optional<TriangleMesh> part;
   double safeZ = 5.0;
   double radialAllowance = 0.0;
   double floorAllowance = 0.0;

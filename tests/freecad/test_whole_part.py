@@ -1,0 +1,96 @@
+"""The whole part: material over the floor that the floor's outline does not
+show (a tab out of a wall, a dome wider than its stem), modelled as a user
+models it (Part boxes, a sphere and a cylinder, fused and cut, the part placed
+off the origin and turned), planned from the floor a user selects, posted with
+linuxcnc and the G-code checked against the part's own solid (part_check):
+no plunge, lead-out or rapid enters it."""
+import json
+
+import pytest
+
+import FreeCAD
+import Part
+
+from freecad_plugin import PlungeRough
+from test_pockets import FLOOR, RADIAL, assert_clean, box, check_job, cut, doc, faces_at, floor_z, job_with_op, placed  # noqa: F401
+
+V = FreeCAD.Vector
+
+
+def fuse(doc, name, shapes):
+    f = doc.addObject("Part::MultiFuse", name)
+    f.Shapes = shapes
+    doc.recompute()
+    return f
+
+
+def tab_over_pocket(doc):
+    """120 x 90 x 30 block, an 80 x 50 pocket 20 deep, and a 25 x 20 x 5 tab out
+    of its left wall, 4 mm below the top: the floor's outline is a rectangle."""
+    pocket = cut(doc, "Pocket", box(doc, "Block", 120, 90, 30), box(doc, "Cavity", 80, 50, 40, (20, 20, 10)))
+    return placed(fuse(doc, "WithTab", [pocket, box(doc, "Tab", 25, 20, 5, (20, 35, 21))]))
+
+
+def dome_on_stem(doc):
+    """140 x 100 x 50 block, a 100 x 70 pocket 40 deep, and in it a stem of
+    R 11.5 carrying a dome of R 15.9 whose top is 2 mm below the part's (a
+    sphere on a cylinder, fused): the floor's outline shows the stem only."""
+    pocket = cut(doc, "Pocket", box(doc, "Block", 140, 100, 50), box(doc, "Cavity", 100, 70, 50, (20, 15, 10)))
+    stem = doc.addObject("Part::Cylinder", "Stem")
+    stem.Radius, stem.Height = 11.5, 20
+    stem.Placement.Base = V(55, 45, 10)
+    ball = doc.addObject("Part::Sphere", "Dome")
+    ball.Radius = 15.9
+    ball.Placement.Base = V(55, 45, 48 - 15.9)  # widest 22.1 mm above the floor
+    return placed(fuse(doc, "WithDome", [pocket, stem, ball]))
+
+
+@pytest.mark.bundle
+@pytest.mark.parametrize("make", [tab_over_pocket, dome_on_stem])
+def test_no_plunge_goes_into_material_over_the_floor(doc, make):
+    obj = make(doc)
+    z = floor_z(obj, 10)
+    faces = faces_at(obj.Shape, z)
+    assert len(faces) == 1
+    # Not pecked: the check counts each plunge once.
+    job, op, tcs = job_with_op(doc, obj, faces, PeckEnabled=False)
+    plan, report = check_job(job, op, tcs, [z])
+    assert_clean(report)
+    assert "overhangs the pocket" in op.Summary, op.Summary
+    # Roughed up to it: the plunges reach the overhang's shadow.
+    assert len(plan["plunges"]) > 20
+    assert min(p["z"] for p in plan["plunges"]) == pytest.approx(z + FLOOR)
+    assert "part" in json.loads(op.PlanData)["input"]
+    assert PlungeRough.plan_of(op) is not None
+
+
+def housing_with_window(doc):
+    """120 x 80 x 50 housing, a 100 x 60 cavity 40 deep, and a 30 mm window
+    through its floor from wall to wall: the floor is two strips."""
+    housing = cut(doc, "Housing", box(doc, "Block", 120, 80, 50), box(doc, "Cavity", 100, 60, 50, (10, 10, 10)))
+    return placed(cut(doc, "WithWindow", housing, box(doc, "Window", 30, 60, 20, (45, 10, -5))))
+
+
+def pocket_with_trough(doc):
+    """120 x 80 x 40 block, a 100 x 60 pocket 30 deep, and along its back wall
+    a trough 12 wide and 6 deeper: the floor's outline steps down along it."""
+    pocket = cut(doc, "Pocket", box(doc, "Block", 120, 80, 40), box(doc, "Cavity", 100, 60, 40, (10, 10, 10)))
+    return placed(cut(doc, "WithTrough", pocket, box(doc, "Trough", 100, 12, 10, (10, 58, 4))))
+
+
+@pytest.mark.parametrize("make, strips", [(housing_with_window, 2), (housing_with_window, 1), (pocket_with_trough, 1)])
+def test_the_cavity_over_a_window_or_a_trough_is_one_pocket(doc, make, strips):
+    obj = make(doc)
+    z = floor_z(obj, 10)
+    faces = faces_at(obj.Shape, z)
+    assert len(faces) == (2 if make is housing_with_window else 1)
+    job, op, tcs = job_with_op(doc, obj, faces[:strips], PeckEnabled=False)
+    plan, report = check_job(job, op, tcs, [z])
+    assert_clean(report)
+    assert "the cavity around the floor planned whole" in op.Summary, op.Summary
+    assert "separate floors" not in op.Summary and "kept as walls" not in op.Summary
+    # Plunges over the window or the trough, as deep as the floor around it.
+    model = obj.Shape
+    over = [p for p in plan["plunges"]
+            if not model.isInside(V(p["x"], p["y"], z - 0.5), 1e-6, True)]
+    assert over and all(p["z"] == pytest.approx(z + FLOOR) for p in over)
