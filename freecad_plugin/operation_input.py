@@ -91,12 +91,23 @@ def build_input(obj, tcs, faces, workdir, notes=None, floors=("z", "brep")):
     settings = settings_of(obj)
     plan_input.check(settings, [(tc.Label, tools.bit_length(tc.Tool, "Length")) for tc in tcs])
     model = model_of(obj)
-    pocket = geometry.pocket(faces, settings.chord_tolerance, settings.include_fillets, settings.wall_margin(), model)
+    names = ", ".join(name for name, _ in faces)
+    try:
+        pocket = geometry.pocket(faces, settings.chord_tolerance, settings.include_fillets, settings.wall_margin(),
+                                 model)
+        # Where the pocket widens above its floor, the wall band is kept there too.
+        sections, deviation = geometry.sections(model, pocket, settings.start_depth, settings.max_wall_stock) \
+            if settings.max_wall_stock > 0 else ([], 0.0)
+        part = geometry.part_mesh(model, pocket)
+    except geometry.GeometryError:
+        raise
+    except Exception as e:  # OpenCASCADE's or Python's own, on faces the geometry did not foresee
+        raise geometry.GeometryError(
+            translate("PlungeRough", "the part around %s could not be read as a pocket (%s: %s): select the "
+                      "pocket's floor faces again, or refine the part (Part > Refine shape) and select them there")
+            % (names, type(e).__name__, e))
     if notes is not None:
         notes.extend(pocket.notes())
-    # Where the pocket widens above its floor, the wall band is kept there too.
-    sections, deviation = geometry.sections(model, pocket, settings.start_depth, settings.max_wall_stock) \
-        if settings.max_wall_stock > 0 else ([], 0.0)
     xs = [p[0] for p in pocket.boundary]
     ys = [p[1] for p in pocket.boundary]
     material, rest_notes = rest.material(obj, PathUtils.findParentJob(obj), tcs,
@@ -109,4 +120,4 @@ def build_input(obj, tcs, faces, workdir, notes=None, floors=("z", "brep")):
         # Rapids and retracts at the first plunger's rapid rates, as the post runs them.
         tools.time_model(tcs[0], settings.tool_change_time),
         pocket.boundary, pocket.islands, geometry.floor_spec(pocket, settings.final_depth, workdir, floors),
-        sections, max(deviation, pocket.deviation), material, geometry.part_mesh(model, pocket))
+        sections, max(deviation, pocket.deviation), material, part)

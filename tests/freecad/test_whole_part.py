@@ -5,6 +5,9 @@ off the origin and turned), planned from the floor a user selects, posted with
 linuxcnc and the G-code checked against the part's own solid (part_check):
 no plunge, lead-out or rapid enters it."""
 import json
+import os
+import random
+import re
 
 import pytest
 
@@ -94,3 +97,39 @@ def test_the_cavity_over_a_window_or_a_trough_is_one_pocket(doc, make, strips):
     over = [p for p in plan["plunges"]
             if not model.isInside(V(p["x"], p["y"], z - 0.5), 1e-6, True)]
     assert over and all(p["z"] == pytest.approx(z + FLOOR) for p in over)
+
+
+# What a refusal may not look like: Python's own words, or the planner's input
+# keys (internal messages a user cannot act on).
+INTERNAL = re.compile(r"Traceback|NoneType|has no attribute|arg is an empty sequence|index out of range|"
+                      r"sections\[|islands\[|island \d+:|boundary:|not subscriptable|unexpected keyword")
+# Every refusal ends in what to do.
+ACTIONABLE = re.compile(r"select|refine|use |add |raise |lower |set |turn ", re.IGNORECASE)
+SELECTIONS = 4 if os.environ.get("PLUNGE_LONG_TESTS") == "1" else 2
+
+
+@pytest.mark.parametrize("make", [tab_over_pocket, dome_on_stem, housing_with_window, pocket_with_trough])
+def test_any_selection_plans_or_says_what_to_do(doc, make):
+    """Random faces and face sets of the part, as a user may click them: each
+    plans, or is refused in one line that names the problem and what to do."""
+    obj = make(doc)
+    faces = obj.Shape.Faces
+    # Mostly faces one could plunge onto (not standing walls), some of any kind.
+    upright = [isinstance(f.Surface, Part.Plane) and abs(f.Surface.Axis.z) < 1e-9
+               or isinstance(f.Surface, Part.Cylinder) and abs(abs(f.Surface.Axis.z) - 1) < 1e-9 for f in faces]
+    lying = [i + 1 for i in range(len(faces)) if not upright[i]]
+    rng = random.Random(make.__name__)
+
+    def pick():
+        return rng.choice(lying) if rng.random() < 0.8 else rng.randint(1, len(faces))
+    picks = [["Face%d" % pick()] for _ in range(SELECTIONS)]
+    picks += [sorted({"Face%d" % pick() for _ in range(rng.randint(2, 3))}) for _ in range(SELECTIONS)]
+    job, op, tcs = job_with_op(doc, obj, picks[0], PeckEnabled=False)
+    for names in picks:
+        op.Base = [(job.Model.Group[0], names)]
+        doc.recompute()
+        summary = op.Summary
+        print("selected", names, ":", summary[:200])
+        assert not INTERNAL.search(summary), (names, summary)
+        if PlungeRough.plan_of(op) is None:
+            assert "\n" not in summary.strip() and ACTIONABLE.search(summary), (names, summary)
