@@ -27,6 +27,7 @@
 #include "mesh_floor.hpp"
 #include "packing.hpp"
 #include "part.hpp"
+#include "part_stock.hpp"
 #include "polygon.hpp"
 #include "region.hpp"
 #include "selection.hpp"
@@ -869,7 +870,40 @@ Posted postReaching(const Stages& job, const MotionOptions& motion, std::vector<
 struct Measures {
   CoverResult cover;
   FloorStockMeasure stock;
+  std::optional<PartStock> partStock;  // with the part: the stock left in 3D (part_stock.hpp)
 };
+
+// The stock left measured against the whole part (part_stock.hpp), on the
+// floor-stock raster's spacing. (floor: the job's, or a clone on another thread.)
+PartStock partStockOf(const Stages& job, const FloorSurface& floor, const std::vector<Plunge>& plunges) {
+  const PlanInput& in = job.in;
+  PartStockOptions o;
+  o.radialAllowance = in.radialAllowance;
+  o.floorAllowance = in.floorAllowance;
+  o.maxFloorStock = std::max(in.floor.maxFloorStock, 0.0);
+  o.spacing = stockSpacing(job.regionArea, 0.5 * job.tools.all().back().diameter);
+  o.progress = job.progress;
+  return measurePartStock(*in.part, floor, in.boundary, job.material, plunges, job.tools, o);
+}
+
+// The stock the 3D measure finds beyond the wall band (rings around islands
+// that narrow upward, columns the outline left out), said as the wall band's
+// broken limit at its height; the raster's own step is its slack.
+Said partStockSaid(const Stages& job, const std::optional<PartStock>& measured) {
+  Said said;
+  const double band = job.in.covering.maxWallStock;
+  if (!measured || band <= 0.0) return said;
+  const double slack = 1.5 * stockSpacing(job.regionArea, 0.5 * job.tools.all().back().diameter);
+  if (measured->thickest <= band + slack) return said;
+  std::ostringstream w;
+  w << std::fixed << std::setprecision(2) << "at " << measured->z << " mm, measured against the whole part, up to "
+    << measured->thickest << " mm of stock stay beside the part, more than the " << band << " mm asked for";
+  said.limit(w.str(), {"max_wall_stock", band, measured->thickest, measured->at, 1,
+                       "the part there is narrower above the floor than the pocket's outline shows (an island or a"
+                       " wall that tapers or steps in, a window or a drop-off the outline leaves out): no plunge of"
+                       " the pocket reaches that stock"});
+  return said;
+}
 
 Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const Progress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -906,7 +940,9 @@ Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const
   std::vector<Plunge> cutting = plunges;
   cutting.insert(cutting.end(), air.inAir.begin(), air.inAir.end());
   auto measuring = std::async(std::launch::async, [&job, cutting = std::move(cutting), own = floor->clone()] {
-    return Measures{coverOf(cutting, job.pocket.accessible, job.pocket.core), measureFloorStock(job, *own, cutting)};
+    Measures m{coverOf(cutting, job.pocket.accessible, job.pocket.core), measureFloorStock(job, *own, cutting), {}};
+    if (job.in.part) m.partStock = partStockOf(job, *own, cutting);
+    return m;
   });
   // The moves between them.
   progress.stage(share::kMotion, "heights and lead-outs");
@@ -923,6 +959,8 @@ Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const
   Said said = planned.said;
   said += coverage.said;
   said += wallBandAboveSaid(job, moves.plunges);
+  const Said inThreeD = partStockSaid(job, measured.partStock);
+  said += inThreeD;
   said += moves.said;
   said += held;
   for (std::string& w : uncheckedHolders(moves.plunges, tools, in.topZ)) said.warn(std::move(w));
@@ -946,6 +984,8 @@ Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const
   st.coreArea = coverage.coreArea;
   st.coreCoverage = coverage.coreCoverage;
   st.maxWallStockLeft = coverage.maxWallStockLeft;
+  // A summary never says the walls are within their band where the 3D measure finds they are not.
+  if (!inThreeD.broken.empty()) st.maxWallStockLeft = std::max(st.maxWallStockLeft, measured.partStock->thickest);
   const StockReport& stock = measured.stock.report;
   st.maxFloorStockLeft = stock.maxFloorStock;
   st.meanFloorStock = stock.meanFloorStock;

@@ -238,3 +238,43 @@ TEST(Part, InReachKeepsWhatReachesIntoThePocket) {
   EXPECT_GE(near.triangles.size(), 2u + 10u);
   EXPECT_EQ(near.deviation.size(), near.triangles.size());
 }
+
+TEST(Part, TheStockAroundAnIslandThatNarrowsUpwardIsMeasuredAndSaid) {
+  // A boss R 15.9 at the floor tapering to R 12.1 at 2 mm below the top: the
+  // outline's island is its foot, so the plunges leave a ring above the floor,
+  // out to the foot, its allowance (0.3) and the band (1): at the boss's top
+  // about 17.2 - 12.1 - 0.3 = 4.8 mm beyond the radial allowance.
+  PlanInput in = pocket60x40();
+  in.boundary = {{0, 0}, {90, 0}, {90, 70}, {0, 70}};
+  const int n = 96;
+  Loop foot;
+  TriangleMesh part = pocketBlock(90, 70, 20, 0);  // the walls and the top around: flush with the outline
+  const auto base = static_cast<std::uint32_t>(part.vertices.size());
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * kPi * k / n;
+    foot.push_back({45 + 15.9 * std::cos(a), 35 + 15.9 * std::sin(a)});
+    part.vertices.push_back({45 + 15.9 * std::cos(a), 35 + 15.9 * std::sin(a), -20});
+    part.vertices.push_back({45 + 12.1 * std::cos(a), 35 + 12.1 * std::sin(a), -2});
+  }
+  part.vertices.push_back({45, 35, -2});
+  for (int k = 0; k < n; ++k) {
+    const std::uint32_t b0 = base + 2 * k, t0 = b0 + 1, b1 = base + 2 * ((k + 1) % n), t1 = b1 + 1;
+    part.triangles.push_back({b0, b1, t1});
+    part.triangles.push_back({b0, t1, t0});
+    part.triangles.push_back({t0, t1, base + 2 * n});
+  }
+  in.islands = {foot};
+  const Plan without = plan(in);
+  in.part = part;
+  const Plan p = plan(in);
+  // Without the part nothing tells the ring apart; with it, the band is said at its size.
+  EXPECT_LT(without.stats.maxWallStockLeft, 1.2);
+  EXPECT_THAT(p.warnings, testing::Contains(HasSubstr("measured against the whole part")));
+  const auto band = std::find_if(p.broken.begin(), p.broken.end(), [](const BrokenLimit& b) {
+    return b.limit == "max_wall_stock" && b.worst > 2.0;
+  });
+  ASSERT_NE(band, p.broken.end());
+  EXPECT_NEAR(band->worst, 4.8, 0.4);
+  EXPECT_NEAR(std::hypot(band->at.x - 45, band->at.y - 35), 17.2, 0.5) << "the ring's outer edge";
+  EXPECT_NEAR(p.stats.maxWallStockLeft, band->worst, 1e-9);
+}
