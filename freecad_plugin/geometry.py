@@ -321,10 +321,14 @@ def _segment_open(loop, walls, opened, tolerance):
 def _outer_wire(face):
     """The face's outer boundary: the wire enclosing the most area. Not
     Face.OuterWire, which on a cut face can be an island's."""
+    outer = face.OuterWire
     wires = face.Wires
     if len(wires) == 1:
-        return wires[0]
-    return max(wires, key=lambda w: abs(Part.Face(w).Area))
+        return outer
+    largest = max(wires, key=lambda w: abs(Part.Face(w).Area))
+    # OuterWire itself where it is the outer one: its start and direction are
+    # the outline's first point and way round, which the plans start from.
+    return outer if largest.isSame(outer) else largest
 
 
 def _upward(face):
@@ -636,12 +640,15 @@ def _wall_faces(model, floor, lowest):
     return out
 
 
-def _section_heights(walls, lowest, top, band):
+def _section_heights(walls, lowest, top, band, part_top):
     """Where the pocket may widen above its floor: up each wall face that does
     not stand vertical (fillets, blends, drafts), at steps over which it widens
     about one band (at most four), to its top; the middle of the wall; the
     lowest first, at most MAX_SECTIONS spread over them."""
     heights = {0.5 * (lowest + top)}
+    # The tops of islands and steps below the part's top: a section there is
+    # taken just above (at their own height the cut would meet the face itself).
+    tops = [f.BoundBox.ZMax for f in walls if is_horizontal_plane(f) and f.BoundBox.ZMax < part_top - 0.05]
     for f in walls:
         if _stands_vertical(f):
             continue
@@ -649,6 +656,7 @@ def _section_heights(walls, lowest, top, band):
         widens = min(f.BoundBox.XLength, f.BoundBox.YLength)  # a fillet's radius, a draft's run
         n = max(1, min(4, int(math.ceil(widens / max(band, 0.1)))))
         heights.update(lo + (hi - lo) * k / n for k in range(1, n + 1))
+    heights = {z + 0.02 if any(abs(z - t) < 0.01 for t in tops) else z for z in heights}
     picked = []
     for z in sorted(heights):
         if lowest + 0.05 < z < top - 0.05 and (not picked or z - picked[-1] > 0.25):
@@ -682,20 +690,37 @@ def _air_at(model, z, at):
     return None
 
 
+def _air_within(model, z, outline, at):
+    """The air of the part's cross-section at height z inside `outline` (a flat
+    face at z = 0) around the point `at`, or None."""
+    plane = outline.copy()
+    plane.translate(V(0, 0, z))
+    for f in plane.cut(model).Faces:
+        if f.isInside(V(at.x, at.y, z), 1e-6, True):
+            return f
+    return None
+
+
 def sections(model, pocket, top, band):
     """The pocket's cross-sections above its floor where it is wider there than
     its outline (fillets and corner blends left as walls, drafted walls): the
     planner keeps the wall band at each of their heights too. [{"z",
-    "boundary", "islands"}], none for a pocket open to a side or without a part;
-    and the largest deviation of their polylines from the part."""
-    if model is None or pocket.open_sides or pocket.kept_walls:
+    "boundary", "islands"}], none without a part; and the largest deviation of
+    their polylines from the part. A pocket open to a side is cut there by
+    its own outline (its margin past the open sides included): islands that
+    narrow upward (tapered bosses, sloped ribs) widen it there too."""
+    if model is None:
         return [], 0.0
     floor = [f for _, f in pocket.faces]
     lowest = pocket.lowest
     at = _inside_point(pocket.boundary, pocket.islands)
-    out, deviation, below = [], 0.0, pocket.shadow.Area
-    for z in _section_heights(_wall_faces(model, floor, lowest), lowest, top, band):
-        air = _air_at(model, z, at)
+    opened = pocket.open_sides or pocket.kept_walls
+    outline = _polygon_face(pocket.boundary)
+    out, deviation = [], 0.0
+    below = outline.cut([_polygon_face(i) for i in pocket.islands]).Area if opened and pocket.islands \
+        else outline.Area if opened else pocket.shadow.Area
+    for z in _section_heights(_wall_faces(model, floor, lowest), lowest, top, band, model.BoundBox.ZMax):
+        air = _air_within(model, z, outline, at) if opened else _air_at(model, z, at)
         if air is None or air.Area - below < 1e-3 * air.Length:
             continue  # open there, or no wider than the floor's outline or the section below
         below = air.Area

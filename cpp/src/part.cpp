@@ -173,9 +173,6 @@ Polygons overhangsOver(const TriangleMesh& part, double above, const Polygons& r
 
 namespace {
 
-// Pieces of floor smaller than this (mm^2) are the polygons' rounding.
-constexpr double kCrumb = 0.01;
-
 // The highest the floor comes over the region: a flat floor's height, else
 // the highest of its peaks (faces' peaks, ridges and corners; a mesh's
 // vertices: floor.hpp) and of its heights along the region's loops.
@@ -192,18 +189,44 @@ double floorTop(const FloorSurface& floor, const Region& region) {
 
 }  // namespace
 
+namespace {
+
+// Pieces of floor smaller than this (mm^2) are the polygons' rounding.
+constexpr double kCrumb = 0.01;
+
+// The region less `over`, opened by the margin (shrunk, then grown back):
+// where the part meets a wall, no thread of the region is left between them
+// to trip the loops' checks. Its pieces, largest first.
+std::vector<Polygons> piecesWithout(const Polygons& region, const Polygons& over, double margin) {
+  std::vector<Polygons> pieces =
+      poly::components(poly::offset(poly::offset(poly::subtract(region, over), -margin), margin));
+  std::sort(pieces.begin(), pieces.end(),
+            [](const Polygons& a, const Polygons& b) { return poly::area(a) > poly::area(b); });
+  return pieces;
+}
+
+}  // namespace
+
+std::optional<Region> pocketBelow(const TriangleMesh& part, const Region& region, double z) {
+  const double margin = partMargin(part);
+  const Polygons over = overhangsOver(part, z, region.polygons(), margin);
+  if (over.empty()) return std::nullopt;
+  const std::vector<Polygons> pieces = piecesWithout(region.polygons(), over, margin);
+  if (pieces.empty() || poly::area(pieces[0]) <= kCrumb) return std::nullopt;
+  try {
+    return Region(pieces[0][0], Polygons(pieces[0].begin() + 1, pieces[0].end()));
+  } catch (const Error&) {
+    return std::nullopt;  // loops Clipper left touching: measured as the section
+  }
+}
+
 PlanInput withoutOverhangs(PlanInput in, const FloorSurface& floor) {
   const Region given(in.boundary, in.islands);
   const Polygons region = given.polygons();
   const double margin = partMargin(*in.part);
   const Polygons over = overhangsOver(*in.part, floorTop(floor, given) + margin, region, margin);
   if (over.empty()) return in;
-  // Opened by the margin (shrunk, then grown back): where an overhang meets a
-  // wall, no thread of the region is left between them to trip the loops' checks.
-  std::vector<Polygons> pieces =
-      poly::components(poly::offset(poly::offset(poly::subtract(region, over), -margin), margin));
-  std::sort(pieces.begin(), pieces.end(),
-            [](const Polygons& a, const Polygons& b) { return poly::area(a) > poly::area(b); });
+  const std::vector<Polygons> pieces = piecesWithout(region, over, margin);
   if (pieces.empty() || poly::area(pieces[0]) <= kCrumb)
     throw Error("the part hangs over the whole floor: no plunge reaches it (select the floor of a pocket open from"
                 " above)");

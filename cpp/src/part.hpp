@@ -12,9 +12,11 @@
 // region's: triangles no farther inside it than `margin` (their deviation)
 // are left out of both.
 #pragma once
+#include <optional>
 #include <vector>
 
 #include "floor.hpp"
+#include "region.hpp"
 #include "plunge/geometry.hpp"
 #include "plunge/types.hpp"
 
@@ -33,6 +35,12 @@ Polygons overhangsOver(const TriangleMesh& part, double above, const Polygons& r
 
 // The part's triangles whose shadow reaches into `region` farther than `margin`.
 TriangleMesh partInReach(const TriangleMesh& part, const Polygons& region, double margin);
+
+// The pocket `region` at height z, less what of the part stands in it there
+// or above (seen from above, as overhangsOver): an island's or a dome's top
+// under a section of the pocket. None where nothing does; where the part
+// parts it, its largest piece.
+std::optional<Region> pocketBelow(const TriangleMesh& part, const Region& region, double z);
 
 // The job without what of in.part overhangs `floor` (higher than the floor's
 // highest point in the pocket): its boundary and islands are the pocket's

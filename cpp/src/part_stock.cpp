@@ -17,72 +17,84 @@ constexpr int kHeights = 48;
 // Stock thinner than this (mm) over a sample is the raster's, not the plan's.
 constexpr double kThin = 0.05;
 
-// "No source" in the distance transform: far above any squared distance of
-// a raster (at most a few thousand samples a side), and small enough that
-// the differences it takes stay exact to well under a sample.
+// "No source" in the distance transforms (mm^2): far above any squared
+// distance in a pocket, and small enough that the differences taken of it
+// stay exact to well under a micrometre.
 constexpr double kFar = 1e12;
 
-// Squared Euclidean distance transform along one line (Felzenszwalb and
-// Huttenlocher, "Distance transforms of sampled functions", 2012): the lower
-// envelope of the parabolas (q - v)^2 + f(v). f: 0 at the sources, kFar elsewhere.
-void transformLine(const std::vector<double>& f, std::vector<double>& d, std::vector<int>& v, std::vector<double>& z) {
+// Squared Euclidean distance transform along one line of samples at sorted
+// positions p (Felzenszwalb and Huttenlocher, "Distance transforms of sampled
+// functions", 2012): the lower envelope of the parabolas (x - p[v])^2 + f[v],
+// read at each p[q]. f: 0 at the sources, kFar elsewhere (or an earlier
+// pass's squared distances).
+void transformLine(const std::vector<double>& p, const std::vector<double>& f, std::vector<double>& d,
+                   std::vector<int>& v, std::vector<double>& z) {
   const int n = static_cast<int>(f.size());
+  auto meet = [&](int q, int r) { return ((f[q] + p[q] * p[q]) - (f[r] + p[r] * p[r])) / (2.0 * (p[q] - p[r])); };
   int k = 0;
   v[0] = 0;
   z[0] = -kInf;
   z[1] = kInf;
   for (int q = 1; q < n; ++q) {
-    double s = ((f[q] + q * static_cast<double>(q)) - (f[v[k]] + v[k] * static_cast<double>(v[k]))) / (2.0 * (q - v[k]));
-    while (s <= z[k]) {
+    double m = meet(q, v[k]);
+    while (m <= z[k]) {
       --k;
-      s = ((f[q] + q * static_cast<double>(q)) - (f[v[k]] + v[k] * static_cast<double>(v[k]))) / (2.0 * (q - v[k]));
+      m = meet(q, v[k]);
     }
     ++k;
     v[k] = q;
-    z[k] = s;
+    z[k] = m;
     z[k + 1] = kInf;
   }
   k = 0;
   for (int q = 0; q < n; ++q) {
-    while (z[k + 1] < q) ++k;
-    d[q] = (q - v[k]) * static_cast<double>(q - v[k]) + f[v[k]];
+    while (z[k + 1] < p[q]) ++k;
+    d[q] = (p[q] - p[v[k]]) * (p[q] - p[v[k]]) + f[v[k]];
   }
 }
 
-// Squared distance, in samples, from every sample to the nearest one of
-// `source` (kFar or more where there is none).
-std::vector<double> distanceSquared(const std::vector<char>& source, size_t nx, size_t ny) {
+// Squared distance (mm^2) from every sample of an nx x ny raster of step h to
+// the nearest one of `source`, into `out` (kFar or more where there is none).
+void distanceSquared(const std::vector<char>& source, size_t nx, size_t ny, double h, float* out) {
   std::vector<double> grid(nx * ny);
   for (size_t k = 0; k < grid.size(); ++k) grid[k] = source[k] ? 0.0 : kFar;
   const size_t n = std::max(nx, ny);
-  std::vector<double> f(n), d(n), z(n + 1);
+  std::vector<double> p(n), f(n), d(n), z(n + 1);
   std::vector<int> v(n);
-  f.resize(ny), d.resize(ny);
+  for (size_t q = 0; q < n; ++q) p[q] = q * h;
+  p.resize(ny), f.resize(ny), d.resize(ny);
   for (size_t i = 0; i < nx; ++i) {  // columns
     for (size_t j = 0; j < ny; ++j) f[j] = grid[j * nx + i];
-    transformLine(f, d, v, z);
+    transformLine(p, f, d, v, z);
     for (size_t j = 0; j < ny; ++j) grid[j * nx + i] = d[j];
   }
-  f.resize(nx), d.resize(nx);
+  p.resize(nx), f.resize(nx), d.resize(nx);
+  for (size_t q = 0; q < nx; ++q) p[q] = q * h;
   for (size_t j = 0; j < ny; ++j) {  // rows
     std::copy(grid.begin() + static_cast<std::ptrdiff_t>(j * nx), grid.begin() + static_cast<std::ptrdiff_t>((j + 1) * nx),
               f.begin());
-    transformLine(f, d, v, z);
-    std::copy(d.begin(), d.end(), grid.begin() + static_cast<std::ptrdiff_t>(j * nx));
+    transformLine(p, f, d, v, z);
+    for (size_t i = 0; i < nx; ++i) out[j * nx + i] = static_cast<float>(d[i]);
   }
-  return grid;
 }
 
 }  // namespace
 
-PartStock measurePartStock(const TriangleMesh& part, const FloorSurface& floor, const Loop& boundary,
+PartStock measurePartStock(const TriangleMesh& part, const FloorSurface& floor, const std::vector<Loop>& outlines,
                            const Material& material, const std::vector<Plunge>& plunges, const ToolTable& tools,
                            const PartStockOptions& o) {
   PartStock out;
-  const Region outline(boundary, {});
-  // One sample step of margin all round: the part's walls stand there.
+  std::vector<Region> footprint;
+  Vec2 lo{kInf, kInf}, hi{-kInf, -kInf};
+  for (const Loop& L : outlines) {
+    const Region& r = footprint.emplace_back(L, std::vector<Loop>{});
+    lo = {std::min(lo.x, r.minCorner().x), std::min(lo.y, r.minCorner().y)};
+    hi = {std::max(hi.x, r.maxCorner().x), std::max(hi.y, r.maxCorner().y)};
+  }
+  // Two sample steps of margin all round: the part's walls stand there.
   const double h = o.spacing;
-  const Vec2 lo = outline.minCorner() - Vec2{2 * h, 2 * h}, hi = outline.maxCorner() + Vec2{2 * h, 2 * h};
+  lo = lo - Vec2{2 * h, 2 * h};
+  hi = hi + Vec2{2 * h, 2 * h};
   const size_t nx = static_cast<size_t>(std::ceil((hi.x - lo.x) / h)) + 1;
   const size_t ny = static_cast<size_t>(std::ceil((hi.y - lo.y) / h)) + 1;
   auto at = [&](size_t k) { return Vec2{lo.x + (k % nx) * h, lo.y + (k / nx) * h}; };
@@ -116,7 +128,7 @@ PartStock measurePartStock(const TriangleMesh& part, const FloorSurface& floor, 
   double lowest = kInf;
   for (size_t k = 0; k < n; ++k) {
     if (k % nx == 0) o.progress.tick();
-    if (!outline.contains(at(k))) continue;
+    if (std::none_of(footprint.begin(), footprint.end(), [&](const Region& r) { return r.contains(at(k)); })) continue;
     inside[k] = 1;
     const double f = floor.height(at(k));
     if (std::isfinite(f)) {
@@ -147,10 +159,8 @@ PartStock measurePartStock(const TriangleMesh& part, const FloorSurface& floor, 
     }
   }
 
-  // At each height: the stock standing in the part's air there, above what
-  // the floor stock may leave, and its distance to the part's material.
-  // Up to the part's top: above it is the Job's stock over the whole part
-  // (a facing pass's), not the pocket's.
+  // Layers from the floor up to the part's top: above it is the Job's stock
+  // over the whole part (a facing pass's), not the pocket's.
   double highest = -kInf, partTop = -kInf;
   for (size_t k = 0; k < n; ++k) {
     if (inside[k]) highest = std::max(highest, stock[k]);
@@ -159,24 +169,65 @@ PartStock measurePartStock(const TriangleMesh& part, const FloorSurface& floor, 
   const double from = lowest + o.floorAllowance, to = std::min(highest, partTop);
   if (!(to > from)) return out;
   const double step = std::max(0.25, (to - from) / kHeights);
+  std::vector<double> heights;
+  for (double z = from + 0.5 * step; z < to; z += step) heights.push_back(z);
+  for (double z : o.heights)
+    if (z > from && z < to) heights.push_back(z);
+  std::sort(heights.begin(), heights.end());
+  heights.erase(std::unique(heights.begin(), heights.end()), heights.end());
+  const size_t layers = heights.size();
+  if (layers == 0 || layers > 4096) return out;  // (at most kHeights and the stops asked about)
+
+  // Each layer: the part's material there seen from above, and everything
+  // past the pocket's outline (its walls, as the outline has them), and the
+  // distance across to it (the wall band is measured across, at each height).
+  std::vector<float> dist(layers * n);
   std::vector<char> solid(n);
-  for (double z = from + 0.5 * step; z < to; z += step) {
+  for (size_t l = 0; l < layers; ++l) {
     o.progress.tick();
+    for (size_t k = 0; k < n; ++k) solid[k] = top[k] >= heights[l] || !inside[k];
+    distanceSquared(solid, nx, ny, h, dist.data() + l * n);
+  }
+
+  // The stock in each layer: in the part's air, above what the floor stock
+  // may leave over the part below. Stock one sample wide (a sliver between
+  // two plunges, the raster's own steps) is no band: only what lies in a
+  // 3 x 3 block of stock or part counts (the raster opened by one sample).
+  std::vector<char> left(n), wide(n);
+  for (size_t l = 0; l < layers; ++l) {
+    const double z = heights[l];
     bool any = false;
     for (size_t k = 0; k < n; ++k) {
-      // Material at this height seen from above; past the outline, what the
-      // part does not show stands as the walls do.
-      solid[k] = top[k] >= z || (!inside[k] && !std::isfinite(top[k]));
-      any = any || (inside[k] && !solid[k] && stock[k] > z + kThin);
+      solid[k] = top[k] >= z || !inside[k];
+      // Over the floor (no part on it there) beyond its stock's limit, or over no part at all.
+      const bool overFloor = std::isfinite(floorZ[k]) && top[k] <= floorZ[k] + kThin &&
+                             z - floorZ[k] - o.floorAllowance > o.maxFloorStock + kThin;
+      // Stock more than the floor's may leave under a cut above it: not the
+      // ledge a plunge's floor allowance leaves where the part ends just under it.
+      left[k] = !solid[k] && stock[k] > z + o.floorAllowance + o.maxFloorStock + kThin &&
+                (overFloor || !std::isfinite(top[k]));
+      any = any || left[k];
     }
     if (!any) continue;
-    const std::vector<double> d2 = distanceSquared(solid, nx, ny);
     for (size_t k = 0; k < n; ++k) {
-      if (!inside[k] || solid[k] || !(stock[k] > z + kThin) || d2[k] >= kFar) continue;
-      // Over the floor, its stock up to the limit is the floor stock's.
-      if (std::isfinite(floorZ[k]) && z <= floorZ[k] + o.floorAllowance + o.maxFloorStock + kThin) continue;
-      const double left = std::sqrt(d2[k]) * h - o.radialAllowance;
-      if (left > out.thickest) out = {left, at(k), z};
+      wide[k] = 0;
+      const size_t i = k % nx, j = k / nx;
+      if (!left[k] || i == 0 || j == 0 || i + 1 == nx || j + 1 == ny) continue;
+      bool block = true;
+      for (size_t b = j - 1; b <= j + 1 && block; ++b)
+        for (size_t a = i - 1; a <= i + 1 && block; ++a) block = left[b * nx + a] || solid[b * nx + a];
+      wide[k] = block;
+    }
+    for (size_t k = 0; k < n; ++k) {
+      if (!left[k]) continue;
+      bool counted = false;
+      const size_t i = k % nx, j = k / nx;
+      for (size_t b = j > 0 ? j - 1 : 0; b <= std::min(j + 1, ny - 1) && !counted; ++b)
+        for (size_t a = i > 0 ? i - 1 : 0; a <= std::min(i + 1, nx - 1) && !counted; ++a) counted = wide[b * nx + a];
+      if (!counted) continue;
+      const double d2 = dist[l * n + k];
+      const double across = (d2 < 0.5 * kFar ? std::sqrt(d2) : kInf) - o.radialAllowance;
+      if (across > out.thickest) out = {across, at(k), z};
     }
   }
   return out;

@@ -126,6 +126,9 @@ constexpr double kCoverageSlack = 1e-3;
 constexpr double kSliverArea = 0.01;
 // Wall stock over max_wall_stock by less than this is the polygons' arcs.
 constexpr double kWallStockSlack = 0.01;
+// "Just below" a section, where the part standing in the pocket is looked for
+// (mm): below the 0.02 mm the addon takes a section above an island's top.
+constexpr double kJustBelow = 0.05;
 
 // The area of the core that neither the packed disks cut nor a tool of radius
 // r can reach (what smaller tools must cover).
@@ -472,7 +475,7 @@ Said wallBandAboveSaid(const Stages& job, const std::vector<Plunge>& plunges) {
   };
   std::optional<Worst> worst;
   std::vector<Region> regions;
-  regions.reserve(in.floor.sections.size());
+  regions.reserve(2 * in.floor.sections.size());  // each section's, and the pocket just below it
   for (const Section& s : in.floor.sections) {
     const double stop = s.z + in.floorAllowance;
     const Region& region = regions.emplace_back(s.boundary, s.islands);
@@ -489,9 +492,20 @@ Said wallBandAboveSaid(const Stages& job, const std::vector<Plunge>& plunges) {
       return through;
     };
     const WallStock uncut = wallStockLeft(region, uncoveredRegion(core, cutAt(stop)), {}, in.radialAllowance);
-    const WallStock under = wallStockLeft(region, uncoveredRegion(core, cutAt(stop - 1e-6)), {}, in.radialAllowance);
+    // Just below the section the pocket is as wide as the section (the walls
+    // lean in there), less what of the part stands in it there (an island's
+    // or a dome's top under the section: part.hpp), whose walls the band is
+    // measured from too.
+    std::optional<Region> stands = in.part ? pocketBelow(*in.part, region, s.z - kJustBelow) : std::nullopt;
+    const Region& below = stands ? regions.emplace_back(std::move(*stands)) : region;
+    const Polygons coreBelow =
+        stands ? coreRegion(below, accessibleRegion(below, 0.5 * in.tools.back().diameter, in.radialAllowance),
+                            in.radialAllowance, in.covering.maxWallStock)
+               : core;
+    const WallStock under =
+        wallStockLeft(below, uncoveredRegion(coreBelow, cutAt(stop - 1e-6)), {}, in.radialAllowance);
     const WallStock corner = outOfReach(region, in, accessible);
-    for (const Worst w : {Worst{uncut, s.z, false, false, &region}, Worst{under, s.z, true, false, &region},
+    for (const Worst w : {Worst{uncut, s.z, false, false, &region}, Worst{under, s.z, true, false, &below},
                           Worst{corner, s.z, false, true, &region}})
       if (w.band.thickest > in.covering.maxWallStock + kWallStockSlack &&
           (!worst || w.band.thickest > worst->band.thickest + 1e-9))
@@ -883,12 +897,23 @@ PartStock partStockOf(const Stages& job, const FloorSurface& floor, const std::v
   o.maxFloorStock = std::max(in.floor.maxFloorStock, 0.0);
   o.spacing = stockSpacing(job.regionArea, 0.5 * job.tools.all().back().diameter);
   o.progress = job.progress;
-  return measurePartStock(*in.part, floor, in.boundary, job.material, plunges, job.tools, o);
+  std::vector<Loop> outlines{in.boundary};
+  // Just below each section and each height many plunges stop at: the walls
+  // that lean in below them leave the most there.
+  for (const Section& s : in.floor.sections) {
+    outlines.push_back(s.boundary);
+    o.heights.push_back(s.z - 0.02);
+  }
+  std::set<double> stops;
+  for (const Plunge& p : plunges) stops.insert(p.z);
+  if (stops.size() <= 64)
+    for (double z : stops) o.heights.push_back(z - 0.001);
+  return measurePartStock(*in.part, floor, outlines, job.material, plunges, job.tools, o);
 }
 
-// The stock the 3D measure finds beyond the wall band (rings around islands
-// that narrow upward, columns the outline left out), said as the wall band's
-// broken limit at its height; the raster's own step is its slack.
+// What the 3D measure finds beyond the wall band (rings around islands that
+// narrow upward, columns the outline left out), said as the band's broken
+// limit at its height; the raster's own step is the slack.
 Said partStockSaid(const Stages& job, const std::optional<PartStock>& measured) {
   Said said;
   const double band = job.in.covering.maxWallStock;
@@ -958,9 +983,9 @@ Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const
   Plan out;
   Said said = planned.said;
   said += coverage.said;
-  said += wallBandAboveSaid(job, moves.plunges);
-  const Said inThreeD = partStockSaid(job, measured.partStock);
-  said += inThreeD;
+  Said above = wallBandAboveSaid(job, moves.plunges);
+  above += partStockSaid(job, measured.partStock);
+  said += above;
   said += moves.said;
   said += held;
   for (std::string& w : uncheckedHolders(moves.plunges, tools, in.topZ)) said.warn(std::move(w));
@@ -984,10 +1009,11 @@ Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const
   st.coreArea = coverage.coreArea;
   st.coreCoverage = coverage.coreCoverage;
   st.maxWallStockLeft = coverage.maxWallStockLeft;
-  // A summary never says the walls are within their band where the 3D measure finds they are not.
-  if (!inThreeD.broken.empty()) st.maxWallStockLeft = std::max(st.maxWallStockLeft, measured.partStock->thickest);
   const StockReport& stock = measured.stock.report;
   st.maxFloorStockLeft = stock.maxFloorStock;
+  // A summary never says the walls are within their band where a measure
+  // above the floor (the sections', the 3D one) finds they are not.
+  for (const BrokenLimit& b : above.broken) st.maxWallStockLeft = std::max(st.maxWallStockLeft, b.worst);
   st.meanFloorStock = stock.meanFloorStock;
   st.volumeRemoved = stock.volumeRemoved;
   st.volumeLeft = stock.volumeLeft;

@@ -133,3 +133,44 @@ def test_any_selection_plans_or_says_what_to_do(doc, make):
         assert not INTERNAL.search(summary), (names, summary)
         if PlungeRough.plan_of(op) is None:
             assert "\n" not in summary.strip() and ACTIONABLE.search(summary), (names, summary)
+
+
+def tapered_bosses(doc):
+    """140 x 100 x 40 block, a 100 x 70 pocket 20 deep open at its front, on its
+    floor two bosses tapering from R 15.9 to R 12.1 (Part cones) and a rib
+    with a sloped top (a Part wedge): the floor's outline shows their feet."""
+    pocket = cut(doc, "Pocket", box(doc, "Block", 140, 100, 40), box(doc, "Cavity", 100, 90, 40, (20, -10, 20)))
+    shapes = [pocket]
+    for i, x in enumerate((50, 110)):
+        cone = doc.addObject("Part::Cone", "Boss%d" % i)
+        cone.Radius1, cone.Radius2, cone.Height = 15.9, 12.1, 18
+        cone.Placement.Base = V(x, 50, 20)
+        shapes.append(cone)
+    rib = doc.addObject("Part::Wedge", "Rib")
+    rib.Xmin, rib.Xmax, rib.Ymin, rib.Ymax, rib.Zmin, rib.Zmax = 0, 8, 0, 16, 0, 40
+    rib.X2min, rib.X2max, rib.Z2min, rib.Z2max = 0, 8, 0, 12  # 16 high at its back, 4 at its front
+    rib.Placement = FreeCAD.Placement(V(76, 70, 20), FreeCAD.Rotation(V(1, 0, 0), 90))
+    shapes.append(rib)
+    return placed(fuse(doc, "WithBosses", shapes))
+
+
+def test_the_stock_around_islands_that_narrow_upward_is_said(doc):
+    obj = tapered_bosses(doc)
+    z = floor_z(obj, 20)
+    faces = faces_at(obj.Shape, z)
+    assert len(faces) == 1
+    job, op, tcs = job_with_op(doc, obj, faces, PeckEnabled=False)
+    plan, report = check_job(job, op, tcs, [z])
+    assert not report["gouges"] and not report["rapids_through_stock"], report
+    assert "open side" in op.Summary
+    said = [b for b in plan["broken_limits"] if b["limit"] == "max_wall_stock"]
+    # Beside the bosses and the rib's ramp the pocket is wider above its floor
+    # than its outline: said at its size (the rings between the heights that
+    # get plunges: a few mm; the ramp's end, up to about its run over the
+    # band's height), never more than the pocket's half width.
+    worst = max((b["worst"] for b in said), default=0.0)
+    assert 2.0 < worst < 35.0, op.Summary
+    assert any("measured against the whole part" in w or "just below" in w for w in plan["warnings"]), op.Summary
+    # The summary's walls figure says it too.
+    assert plan["stats"]["max_wall_stock_left"] == pytest.approx(worst)
+    assert "walls up to %.2f mm" % worst in op.Summary
