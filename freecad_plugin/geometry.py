@@ -38,21 +38,67 @@ def _xy(points):
     return [list(q) for q in out]
 
 
-def _chords(shape, tolerance):
-    """Points along a wire or edge whose chords stay within `tolerance` of it,
-    and the largest deviation measured (OCCT's deflection is not a strict
-    bound: chord midpoints are checked and the points refined until within it)."""
+def _edge_chords(edge, tolerance):
+    """Points along the edge, in its parameter's direction, whose chords stay
+    within `tolerance` of it, and the largest deviation measured: OCCT's
+    deflection is not a strict bound, so each chord's midpoint is projected
+    onto the curve, and the points are refined until within it."""
+    try:
+        curve = edge.Curve
+    except (Part.OCCError, TypeError, RuntimeError):  # a curve type FreeCAD does not wrap
+        curve = None
+    if isinstance(curve, Part.Line):
+        return [edge.valueAt(edge.FirstParameter), edge.valueAt(edge.LastParameter)], 0.0
+
+    def off(m):  # the curve's distance from a chord's midpoint
+        if curve is not None:
+            return (curve.value(curve.parameter(m)) - m).Length
+        return edge.distToShape(Part.Vertex(m))[0]
     deflection = tolerance
     for _ in range(6):
-        points = shape.discretize(Deflection=deflection)
+        points = edge.discretize(Deflection=deflection)
         deviation = 0.0
         for a, b in zip(points, points[1:]):
             if (a - b).Length > 1e-9:
-                deviation = max(deviation, shape.distToShape(Part.Vertex((a + b) * 0.5))[0])
+                deviation = max(deviation, off((a + b) * 0.5))
         if deviation <= tolerance:
             break
         deflection *= 0.5
     return points, deviation
+
+
+def _chords(shape, tolerance):
+    """Points along an edge, or along a wire edge by edge in the wire's order
+    and direction, whose chords stay within `tolerance` of it, and the
+    largest deviation measured (_edge_chords)."""
+    if shape.ShapeType == "Edge":
+        return _edge_chords(shape, tolerance)
+    out, deviation = [], 0.0
+    edges = shape.OrderedEdges
+    for i, e in enumerate(edges):
+        points, d = _edge_chords(e, tolerance)
+        deviation = max(deviation, d)
+        # Each edge runs on from where the last one ended (the first, toward
+        # the second): the edges' own orientation flags are not to be trusted
+        # on every wire (a slice's).
+        if out:
+            flip = (points[-1] - out[-1]).Length < (points[0] - out[-1]).Length
+        elif e.Orientation == "Reversed" or len(edges) > 1:
+            ends = [v.Point for v in edges[1].Vertexes] if len(edges) > 1 else []
+            near = lambda p: min((p - q).Length for q in ends) if ends else 0.0  # noqa: E731
+            flip = near(points[0]) < near(points[-1]) if ends else e.Orientation == "Reversed"
+        else:
+            flip = False
+        if flip:
+            points.reverse()
+        out.extend(points if not out else points[1:])
+    if len(out) > 1 and ((out[0] - out[-1]).Length <= 1e-4 or shape.isClosed()):
+        # Closed on its very first point (a slice's wire may close within its
+        # tolerance only: a micrometre's gap is no edge).
+        if (out[0] - out[-1]).Length > 1e-4:
+            out.append(out[0])
+        out[-1] = out[0]
+    return out, deviation
 
 
 def _polyline(wire, tolerance):
@@ -567,6 +613,21 @@ def floor_spec(pocket, final_depth, workdir=None, floors=("z", "brep")):
     compound.exportBrep(path)
     return {"brep": path}
 
+def _stands(face):
+    """The face stands upright everywhere: no shadow in plan view."""
+    if _stands_vertical(face):
+        return True
+    surface = face.Surface
+    if isinstance(surface, Part.Plane):
+        return False
+    if isinstance(surface, Part.SurfaceOfExtrusion):  # a free-form wall drawn and extruded
+        return abs(abs(surface.Direction.z) - 1) < 1e-9
+    try:
+        return _shadow_area(face) <= 1e-6 * max(face.Area, 1.0)
+    except (Part.OCCError, ValueError):
+        return False
+
+
 def part_mesh(model, pocket, reach=1.0):
     """The planner's "part" (docs/plan-format.md): every face of the part but
     the floor's that comes within `reach` of the pocket's outline in plan view
@@ -582,9 +643,11 @@ def part_mesh(model, pocket, reach=1.0):
     box = FreeCAD.BoundBox(min(xs) - reach, min(ys) - reach, pocket.lowest - reach,
                            max(xs) + reach, max(ys) + reach, top + reach)
     floor = [f for _, f in pocket.faces]
+    # Faces that stand (walls, plane or free-form) cast no shadow: the outline
+    # keeps the plunges off them, and the faces at their top hold the tool up.
     faces = [f for f in model.Faces
              if f.BoundBox.intersect(box) and f.BoundBox.ZMax > pocket.lowest + 1e-6
-             and not any(f.isSame(g) for g in floor)]
+             and not any(f.isSame(g) for g in floor) and not _stands(f)]
     if not faces:
         return None
     deflection = max(pocket.tolerance, 1e-3)
@@ -599,7 +662,9 @@ def part_mesh(model, pocket, reach=1.0):
                                                                       (c + a) / 2))
         triangles.extend((T + len(vertices)).tolist())
         vertices.extend(P.tolist())
-        deviations.extend((off * floor_mesh.MARGIN).tolist())
+        # No less than the outline's own chords stray: where a face's edge is
+        # the outline's (an island's top), the two must not be told apart.
+        deviations.extend(max(d, pocket.deviation) for d in (off * floor_mesh.MARGIN).tolist())
     return {"vertices": vertices, "triangles": triangles, "deviation": deviations}
 
 
@@ -678,16 +743,33 @@ def _inside_point(boundary, islands):
 def _air_at(model, z, at):
     """The air of the part's cross-section at height z around the point `at`
     (a face: the pocket's outline there and its islands), None where the
-    pocket opens to the outside at that height."""
-    bb = model.BoundBox
-    plane = Part.makePlane(bb.XLength + 20, bb.YLength + 20, V(bb.XMin - 10, bb.YMin - 10, z))
-    for f in plane.cut(model).Faces:
-        if f.isInside(V(at.x, at.y, z), 1e-6, True):
-            fb = f.BoundBox
-            if fb.XMin < bb.XMin - 5 or fb.YMin < bb.YMin - 5 or fb.XMax > bb.XMax + 5 or fb.YMax > bb.YMax + 5:
-                return None
-            return f
-    return None
+    pocket opens to the outside at that height. From the part's section
+    wires (a slice, much quicker than a boolean cut): the smallest loop
+    around `at` is the pocket's, the loops inside it its islands."""
+    p = V(at.x, at.y, z)
+    try:
+        loops = [Part.Face(w) for w in model.slice(V(0, 0, 1), z) if w.isClosed()]
+        around = [f for f in loops if f.isInside(p, 1e-6, True)]
+        if not around:
+            return None
+        outline = min(around, key=lambda f: f.Area)
+        islands = [f for f in loops if f.Area < outline.Area and not f.isInside(p, 1e-6, True)
+                   and outline.isInside(f.Vertexes[0].Point, 1e-6, True)]
+        # Loops nested in an island (a hole in a boss) are the boss's, not the pocket's.
+        islands = [f for f in islands if not any(g is not f and g.Area > f.Area
+                                                 and g.isInside(f.Vertexes[0].Point, 1e-6, True) for g in islands)]
+        air = outline.cut(islands) if islands else outline
+        return air.Faces[0] if air.Faces else None
+    except (Part.OCCError, ValueError, IndexError):
+        bb = model.BoundBox  # the section's loops do not close: the boolean way
+        plane = Part.makePlane(bb.XLength + 20, bb.YLength + 20, V(bb.XMin - 10, bb.YMin - 10, z))
+        for f in plane.cut(model).Faces:
+            if f.isInside(p, 1e-6, True):
+                fb = f.BoundBox
+                if fb.XMin < bb.XMin - 5 or fb.YMin < bb.YMin - 5 or fb.XMax > bb.XMax + 5 or fb.YMax > bb.YMax + 5:
+                    return None
+                return f
+        return None
 
 
 def _air_within(model, z, outline, at):

@@ -97,10 +97,21 @@ else
     esac
   done
 fi
+# The checkout's commit, with git or (a fresh machine has none) from .git itself.
+commit() {
+  git -C "$ROOT" rev-parse HEAD 2>/dev/null && return
+  head=$(cat "$ROOT/.git/HEAD" 2>/dev/null) || { echo unknown; return; }
+  case $head in
+    "ref: "*) ref=${head#ref: }
+              cat "$ROOT/.git/$ref" 2>/dev/null || sed -n "s| $ref\$||p" "$ROOT/.git/packed-refs" 2>/dev/null | grep . ||
+                echo unknown ;;
+    *) echo "$head" ;;
+  esac
+}
 # What the program was built from: the user's answer to "which build is this".
 {
   echo "PlungeRough's planner for $PLATFORM x86-64: $EXE"
-  echo "commit: $(git -C "$ROOT" rev-parse HEAD 2>/dev/null || echo unknown)"
+  echo "commit: $(commit)"
   echo "built on: $(. /etc/os-release && echo "$PRETTY_NAME"), $($CXX --version | head -n1)"
   while read -r _ source version suite; do
     echo "from Debian's sources: $source $version ($suite), built static here"

@@ -177,22 +177,27 @@ double DepthSolver::plungeHeight(Vec2 c, const Cutter& cutter, double floorAllow
   // much lower) touches the floor where the cutter keeps it. Added vertically
   // instead, a slope of angle t would keep only cos(t) of it.
   const Cutter around = floorAllowance > 0.0 ? grownAround(cutter, floorAllowance) : cutter;
-  double z = floor_.isFlat() ? floorStopHeight(c, cutter) + floorAllowance
-                             : floorStopHeight(c, around) + floorAllowance;
-  // Beside the cutter the floor keeps the radial allowance: the cutter grown
-  // sideways by it (a flat one wider, a ball or bull nose with a flat of the
-  // allowance at its centre) must not touch the floor either. Where the floor
-  // rises more than the floor allowance within the radial allowance beyond the
-  // rim (a fillet rising into its wall) this holds the cutter up; a step
-  // between two selected levels becomes a wall of the lower one.
-  if (!floor_.isFlat() && radialAllowance > 0.0)
-    z = std::max(z, floorStopHeight(c, grownSideways(cutter, radialAllowance)));
+  double z = -kInf;
+  try {
+    z = floor_.isFlat() ? floorStopHeight(c, cutter) + floorAllowance : floorStopHeight(c, around) + floorAllowance;
+    // Beside the cutter the floor keeps the radial allowance: the cutter grown
+    // sideways by it (a flat one wider, a ball or bull nose with a flat of the
+    // allowance at its centre) must not touch the floor either. Where the floor
+    // rises more than the floor allowance within the radial allowance beyond the
+    // rim (a fillet rising into its wall) this holds the cutter up; a step
+    // between two selected levels becomes a wall of the lower one.
+    if (!floor_.isFlat() && radialAllowance > 0.0)
+      z = std::max(z, floorStopHeight(c, grownSideways(cutter, radialAllowance)));
+  } catch (const Error&) {
+    if (!part_) throw;  // no floor under the cutter: the part may still be
+  }
   // The part keeps both allowances too: a face of it over the pocket that no
   // outline shows (an overhang's underside beside the cutter, a neighbour's
   // floor) holds the cutter up before it enters.
   if (part_) {
     z = std::max(z, partStopHeight(c, around) + floorAllowance);
     if (radialAllowance > 0.0) z = std::max(z, partStopHeight(c, grownSideways(cutter, radialAllowance)));
+    if (!std::isfinite(z)) throw Error("no floor under the plunge at " + formatPoint(c));
   }
   return z;
 }

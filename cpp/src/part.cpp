@@ -194,15 +194,26 @@ namespace {
 // Pieces of floor smaller than this (mm^2) are the polygons' rounding.
 constexpr double kCrumb = 0.01;
 
-// The region less `over`, opened by the margin (shrunk, then grown back):
-// where the part meets a wall, no thread of the region is left between them
-// to trip the loops' checks. Its pieces, largest first.
+// The region less `over` grown by the margin more (so that where the part
+// meets a wall it cuts into the wall, and no thread of the region is left
+// between them), without crumbs: its pieces, largest first. Where Clipper
+// still leaves loops touching, the region is opened by the margin instead
+// (shrunk, then grown back), which rounds its corners that much.
 std::vector<Polygons> piecesWithout(const Polygons& region, const Polygons& over, double margin) {
-  std::vector<Polygons> pieces =
-      poly::components(poly::offset(poly::offset(poly::subtract(region, over), -margin), margin));
-  std::sort(pieces.begin(), pieces.end(),
-            [](const Polygons& a, const Polygons& b) { return poly::area(a) > poly::area(b); });
-  return pieces;
+  auto pieces = [](const Polygons& p) {
+    std::vector<Polygons> out;
+    for (Polygons& c : poly::components(p))
+      if (poly::area(c) > kCrumb) out.push_back(std::move(c));
+    std::sort(out.begin(), out.end(), [](const Polygons& a, const Polygons& b) { return poly::area(a) > poly::area(b); });
+    return out;
+  };
+  std::vector<Polygons> cut = pieces(poly::subtract(region, poly::offset(over, margin)));
+  try {
+    if (!cut.empty()) Region(cut[0][0], Polygons(cut[0].begin() + 1, cut[0].end()));
+    return cut;
+  } catch (const Error&) {
+    return pieces(poly::offset(poly::offset(poly::subtract(region, over), -margin), margin));
+  }
 }
 
 }  // namespace

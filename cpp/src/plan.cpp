@@ -569,9 +569,12 @@ Planned pocketOf(const PlanInput& given) {
 }
 
 // The part's triangles within reach of the pocket (part.hpp), as a surface
-// the depths read; none when no triangle reaches in.
-std::shared_ptr<const FloorSurface> partSurface(const TriangleMesh& part, const Region& region) {
-  return makeMeshSurface(partInReach(part, region.polygons(), partMargin(part)));
+// the depths read: over its region and its sections (wider above the floor,
+// where the section's plunges go); none when no triangle reaches in.
+std::shared_ptr<const FloorSurface> partSurface(const PlanInput& in, const Region& region) {
+  Polygons reach = region.polygons();
+  for (const Section& s : in.floor.sections) reach = poly::unite(reach, Region(s.boundary, s.islands).polygons());
+  return makeMeshSurface(partInReach(*in.part, reach, partMargin(*in.part)));
 }
 
 // The wall band above the floor: where the pocket is wider at a height than
@@ -608,11 +611,11 @@ std::vector<CutDisk> wallBandAbove(const Stages& job, std::vector<CutDisk> disks
     for (size_t k = through.size(); k < cover.disks.size(); ++k) {
       const CoverDisk& n = cover.disks[k];
       double z = stop;
-      try {  // over the floor, no lower than the floor allows
+      try {  // over the floor and the part, no lower than they allow
         z = std::max(z, depths.plungeHeight(n.center, cutterOf(tools.all()[n.tool]), in.floorAllowance,
                                             in.radialAllowance));
       } catch (const Error&) {
-        // no floor under it: the section's height holds it
+        // no floor (nor part) under it: the section's height holds it
       }
       if (z < in.topZ) disks.push_back({n.center, tools.all()[n.tool].id, z});
     }
@@ -946,7 +949,7 @@ Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const
   progress.stage(share::kFloor, "analysing the floor");
   // The part around the pocket, where given: every depth reads it too.
   const DepthSolver depths(*floor, lo, hi, std::max(0.25 * in.tools.back().diameter, kDepthCellFraction * dist(lo, hi)),
-                           progress, in.part ? partSurface(*in.part, pocket.region) : nullptr);
+                           progress, in.part ? partSurface(in, pocket.region) : nullptr);
   const double regionArea = poly::area(allowedRegion(pocket.region, in.radialAllowance));
   const Stages job{in, tools, pocket, *floor, depths, material, progress, regionArea};
 

@@ -15,6 +15,8 @@ import FreeCAD
 import Part
 
 from freecad_plugin import PlungeRough
+from freecad_plugin.compat import post_job
+from part_check import check
 from test_pockets import FLOOR, RADIAL, assert_clean, box, check_job, cut, doc, faces_at, floor_z, job_with_op, placed  # noqa: F401
 
 V = FreeCAD.Vector
@@ -174,3 +176,108 @@ def test_the_stock_around_islands_that_narrow_upward_is_said(doc):
     # The summary's walls figure says it too.
     assert plan["stats"]["max_wall_stock_left"] == pytest.approx(worst)
     assert "walls up to %.2f mm" % worst in op.Summary
+
+
+def tilted_floor_with_standoffs(doc):
+    """140 x 100 x 50 block, a 100 x 70 pocket whose floor is tilted 8 degrees
+    about X, and on it three standoffs (Part cylinders R 5 up to 6 mm below the
+    top): their feet on the tilted floor are ellipses, some of whose edges run
+    against their curve's parameter."""
+    cavity = box(doc, "Cavity", 100, 70, 60, (20, 15, 15))
+    cavity.Placement = FreeCAD.Placement(V(20, 15, 15), FreeCAD.Rotation(V(1, 0, 0), 8))
+    pocket = cut(doc, "Pocket", box(doc, "Block", 140, 100, 50), cavity)
+    shapes = [pocket]
+    for i, (x, y) in enumerate(((45, 35), (95, 40), (70, 65))):
+        c = doc.addObject("Part::Cylinder", "Standoff%d" % i)
+        c.Radius, c.Height = 5, 40
+        c.Placement.Base = V(x, y, 4)
+        shapes.append(c)
+    return placed(fuse(doc, "WithStandoffs", shapes))
+
+
+def enclosure_base(doc):
+    """An enclosure's base: 140 x 100 x 30 block, a 110 x 70 pocket 20 deep with
+    a 45 degree chamfer of 3 mm along its floor's edges (Part Chamfer) and four
+    bosses R 6 in its corners."""
+    pocket = cut(doc, "Pocket", box(doc, "Block", 140, 100, 30), box(doc, "Cavity", 110, 70, 40, (15, 15, 10)))
+    ch = doc.addObject("Part::Chamfer", "Chamfer")
+    ch.Base = pocket
+    ch.Edges = [(i + 1, 3.0, 3.0) for i, e in enumerate(pocket.Shape.Edges)
+                if abs(e.BoundBox.ZMin - 10) < 1e-6 and abs(e.BoundBox.ZMax - 10) < 1e-6
+                and 15 <= e.BoundBox.XMin and e.BoundBox.XMax <= 125 and 15 <= e.BoundBox.YMin and e.BoundBox.YMax <= 85]
+    pocket.Visibility = False
+    doc.recompute()
+    shapes = [ch]
+    for i, (x, y) in enumerate(((28, 28), (112, 28), (28, 72), (112, 72))):
+        c = doc.addObject("Part::Cylinder", "Boss%d" % i)
+        c.Radius, c.Height = 6, 20
+        c.Placement.Base = V(x, y, 10)
+        shapes.append(c)
+    return placed(fuse(doc, "Base", shapes))
+
+
+@pytest.mark.parametrize("make", [tilted_floor_with_standoffs, enclosure_base])
+def test_curved_and_chamfered_outlines_plan(doc, make):
+    obj = make(doc)
+    # The floor: the largest face looking up at the cavity's bottom.
+    def up(f):
+        u0, u1, v0, v1 = f.ParameterRange
+        return f.normalAt(0.5 * (u0 + u1), 0.5 * (v0 + v1)).z
+    floor = max((f for f in obj.Shape.Faces if isinstance(f.Surface, Part.Plane) and up(f) > 0.9
+                 and f.BoundBox.ZMax < obj.Shape.BoundBox.ZMax - 1), key=lambda f: f.Area)
+    name = "Face%d" % (next(i for i, f in enumerate(obj.Shape.Faces) if f.isSame(floor)) + 1)
+    job, op, tcs = job_with_op(doc, obj, [name], PeckEnabled=False)
+    plan = PlungeRough.plan_of(op)
+    assert plan is not None, op.Summary
+    assert not INTERNAL.search(op.Summary), op.Summary
+    data = json.loads(op.PlanData)["input"]
+    assert len(data["islands"]) >= 3  # the standoffs' or the bosses' feet
+    gcode = post_job(job, "linuxcnc", "--no-header --no-show-editor")
+    report = check(job.Model.Group[0].Shape, job.Stock.Shape.BoundBox.ZMax, gcode,
+                   {int(tc.ToolNumber): float(tc.Tool.Diameter) for tc in tcs}, RADIAL, FLOOR, 1.0, 10.0, [], [])
+    assert not report["gouges"] and not report["rapids_through_stock"], report
+
+
+def four_slots(doc):
+    """120 x 100 x 30 block with four slots 12 wide and 15 deep, open at both
+    ends (Part cuts of boxes through it)."""
+    shape = box(doc, "Block", 120, 100, 30)
+    for i, x in enumerate((15, 40, 65, 90)):
+        shape = cut(doc, "Slot%d" % i, shape, box(doc, "SlotTool%d" % i, 12, 120, 20, (x, -10, 15)))
+    return placed(shape)
+
+
+def test_separate_floors_are_counted_right(doc):
+    obj = four_slots(doc)
+    floors = faces_at(obj.Shape, floor_z(obj, 15))
+    assert len(floors) == 4
+    job, op, tcs = job_with_op(doc, obj, floors, PeckEnabled=False)
+    assert PlungeRough.plan_of(op) is None
+    assert "make 4 separate floors" in op.Summary, op.Summary
+    # One of them plans, open at both ends.
+    op.Base = [(job.Model.Group[0], floors[:1])]
+    doc.recompute()
+    assert PlungeRough.plan_of(op) is not None, op.Summary
+    assert "2 open sides" in op.Summary
+
+
+def test_chords_stay_within_the_chord_tolerance(doc):
+    """The outline's chords (one discretisation per edge, each chord's middle
+    checked against its curve) never stray farther from the part's edges than
+    the chord tolerance: measured here along every chord of every wire of the
+    curved test parts, at five points each, by OpenCASCADE's own distance."""
+    from freecad_plugin import geometry
+    import parts
+    shapes = [parts.freeform_part()] + [make(doc).Shape for make in (
+        dome_on_stem, tilted_floor_with_standoffs, enclosure_base)]
+    tolerance = 0.01
+    checked = 0
+    for shape in shapes:
+        for wire in shape.Wires:
+            points, measured = geometry._chords(wire, tolerance)
+            assert measured <= tolerance
+            for a, b in zip(points, points[1:]):
+                for k in (0.1, 0.3, 0.5, 0.7, 0.9):
+                    assert wire.distToShape(Part.Vertex(a + (b - a) * k))[0] <= tolerance + 1e-7
+                    checked += 1
+    assert checked > 1000
