@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "depth.hpp"
+#include "polygon.hpp"
 #include "region.hpp"
 
 namespace plunge {
@@ -13,7 +14,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Heights the stock is measured at: about this many from the floor to the top.
-constexpr int kHeights = 48;
+constexpr int kHeights = 24;
 // Stock thinner than this (mm) over a sample is the raster's, not the plan's.
 constexpr double kThin = 0.05;
 
@@ -123,13 +124,35 @@ PartStock measurePartStock(const TriangleMesh& part, const FloorSurface& floor, 
       }
     }
   }
+  // The footprint, row by row: where a row crosses the outlines' edges (their
+  // union's, even-odd), the samples between two crossings are inside.
   std::vector<char> inside(n, 0);
+  {
+    Polygons all;
+    for (const Region& r : footprint) all.push_back(r.loops()[0]);
+    const Polygons merged = poly::unite(all);
+    std::vector<double> xs;
+    for (size_t j = 0; j < ny; ++j) {
+      const double y = lo.y + j * h;
+      xs.clear();
+      for (const Loop& L : merged)
+        for (size_t e = 0; e < L.size(); ++e) {
+          const Vec2 a = L[e], b = L[(e + 1) % L.size()];
+          if ((a.y <= y) != (b.y <= y)) xs.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+        }
+      std::sort(xs.begin(), xs.end());
+      for (size_t q = 0; q + 1 < xs.size(); q += 2) {
+        const long i0 = std::max(0L, static_cast<long>(std::ceil((xs[q] - lo.x) / h)));
+        const long i1 = std::min(static_cast<long>(nx) - 1, static_cast<long>(std::floor((xs[q + 1] - lo.x) / h)));
+        for (long i = i0; i <= i1; ++i) inside[j * nx + static_cast<size_t>(i)] = 1;
+      }
+    }
+  }
   std::vector<double> floorZ(n, -kInf);
   double lowest = kInf;
   for (size_t k = 0; k < n; ++k) {
     if (k % nx == 0) o.progress.tick();
-    if (std::none_of(footprint.begin(), footprint.end(), [&](const Region& r) { return r.contains(at(k)); })) continue;
-    inside[k] = 1;
+    if (!inside[k]) continue;
     const double f = floor.height(at(k));
     if (std::isfinite(f)) {
       floorZ[k] = f;
@@ -178,22 +201,12 @@ PartStock measurePartStock(const TriangleMesh& part, const FloorSurface& floor, 
   const size_t layers = heights.size();
   if (layers == 0 || layers > 4096) return out;  // (at most kHeights and the stops asked about)
 
-  // Each layer: the part's material there seen from above, and everything
-  // past the pocket's outline (its walls, as the outline has them), and the
-  // distance across to it (the wall band is measured across, at each height).
-  std::vector<float> dist(layers * n);
-  std::vector<char> solid(n);
-  for (size_t l = 0; l < layers; ++l) {
-    o.progress.tick();
-    for (size_t k = 0; k < n; ++k) solid[k] = top[k] >= heights[l] || !inside[k];
-    distanceSquared(solid, nx, ny, h, dist.data() + l * n);
-  }
-
   // The stock in each layer: in the part's air, above what the floor stock
   // may leave over the part below. Stock one sample wide (a sliver between
   // two plunges, the raster's own steps) is no band: only what lies in a
   // 3 x 3 block of stock or part counts (the raster opened by one sample).
-  std::vector<char> left(n), wide(n);
+  std::vector<char> solid(n), left(n), wide(n);
+  std::vector<float> dist(n);
   for (size_t l = 0; l < layers; ++l) {
     const double z = heights[l];
     bool any = false;
@@ -209,6 +222,11 @@ PartStock measurePartStock(const TriangleMesh& part, const FloorSurface& floor, 
       any = any || left[k];
     }
     if (!any) continue;
+    // The part's material there seen from above, and everything past the
+    // pocket's outline (its walls, as the outline has them): the distance
+    // across to it (the wall band is measured across, at each height).
+    o.progress.tick();
+    distanceSquared(solid, nx, ny, h, dist.data());
     for (size_t k = 0; k < n; ++k) {
       wide[k] = 0;
       const size_t i = k % nx, j = k / nx;
@@ -225,7 +243,7 @@ PartStock measurePartStock(const TriangleMesh& part, const FloorSurface& floor, 
       for (size_t b = j > 0 ? j - 1 : 0; b <= std::min(j + 1, ny - 1) && !counted; ++b)
         for (size_t a = i > 0 ? i - 1 : 0; a <= std::min(i + 1, nx - 1) && !counted; ++a) counted = wide[b * nx + a];
       if (!counted) continue;
-      const double d2 = dist[l * n + k];
+      const double d2 = dist[k];
       const double across = (d2 < 0.5 * kFar ? std::sqrt(d2) : kInf) - o.radialAllowance;
       if (across > out.thickest) out = {across, at(k), z};
     }

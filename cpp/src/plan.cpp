@@ -127,8 +127,9 @@ constexpr double kSliverArea = 0.01;
 // Wall stock over max_wall_stock by less than this is the polygons' arcs.
 constexpr double kWallStockSlack = 0.01;
 // "Just below" a section, where the part standing in the pocket is looked for
-// (mm): below the 0.02 mm the addon takes a section above an island's top.
-constexpr double kJustBelow = 0.05;
+// (mm): a hair below the 0.02 mm the addon takes a section above an island's
+// top, and no lower (the walls that lean in are measured from there).
+constexpr double kJustBelow = 0.0201;
 
 // The area of the core that neither the packed disks cut nor a tool of radius
 // r can reach (what smaller tools must cover).
@@ -890,15 +891,20 @@ struct Measures {
   std::optional<PartStock> partStock;  // with the part: the stock left in 3D (part_stock.hpp)
 };
 
-// The stock left measured against the whole part (part_stock.hpp), on the
-// floor-stock raster's spacing. (floor: the job's, or a clone on another thread.)
+// The 3D measure's raster: twice the floor stock's (a quarter of its
+// samples, each layer a distance transform): its bands are whole millimetres.
+double partStockSpacing(const Stages& job) {
+  return 2.0 * stockSpacing(job.regionArea, 0.5 * job.tools.all().back().diameter);
+}
+
+// The stock left measured against the whole part (part_stock.hpp). (floor: the job's, or a clone on another thread.)
 PartStock partStockOf(const Stages& job, const FloorSurface& floor, const std::vector<Plunge>& plunges) {
   const PlanInput& in = job.in;
   PartStockOptions o;
   o.radialAllowance = in.radialAllowance;
   o.floorAllowance = in.floorAllowance;
   o.maxFloorStock = std::max(in.floor.maxFloorStock, 0.0);
-  o.spacing = stockSpacing(job.regionArea, 0.5 * job.tools.all().back().diameter);
+  o.spacing = partStockSpacing(job);
   o.progress = job.progress;
   std::vector<Loop> outlines{in.boundary};
   // Just below each section and each height many plunges stop at: the walls
@@ -921,7 +927,7 @@ Said partStockSaid(const Stages& job, const std::optional<PartStock>& measured) 
   Said said;
   const double band = job.in.covering.maxWallStock;
   if (!measured || band <= 0.0) return said;
-  const double slack = 1.5 * stockSpacing(job.regionArea, 0.5 * job.tools.all().back().diameter);
+  const double slack = 1.5 * partStockSpacing(job);
   if (measured->thickest <= band + slack) return said;
   std::ostringstream w;
   w << std::fixed << std::setprecision(2) << "at " << measured->z << " mm, measured against the whole part, up to "

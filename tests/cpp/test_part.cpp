@@ -275,6 +275,6 @@ TEST(Part, TheStockAroundAnIslandThatNarrowsUpwardIsMeasuredAndSaid) {
   });
   ASSERT_NE(band, p.broken.end());
   EXPECT_NEAR(band->worst, 4.8, 0.4);
-  EXPECT_NEAR(std::hypot(band->at.x - 45, band->at.y - 35), 17.2, 0.5) << "the ring's outer edge";
+  EXPECT_NEAR(std::hypot(band->at.x - 45, band->at.y - 35), 17.2, 1.0) << "the ring's outer edge (a raster step or two)";
   EXPECT_NEAR(p.stats.maxWallStockLeft, band->worst, 1e-9);
 }

@@ -469,7 +469,8 @@ def band_left(part, stops, z, radial, band, tol=0.01, step=0.05):
     radius there; lead-outs left out). {"z", "uncut", "at", "core_points",
     "thickest", "thickest_at"}: uncut 0 when every point of the core was cut;
     thickest, the band itself: the uncut point of the section farthest from
-    its walls, less the radial allowance (0 when all is cut)."""
+    its walls, less the radial allowance (0 when all is cut; a point within
+    tol of a stop's disk is cut)."""
     deep = [s for s in stops if s.kind == "stop" and s.z < z - 1e-9]
     if not deep:
         raise ValueError("no stop reaches below z = %g" % z)
@@ -489,8 +490,11 @@ def band_left(part, stops, z, radial, band, tol=0.01, step=0.05):
         near = disks[(disks[:, 1] + disks[:, 2] >= ys[0]) & (disks[:, 1] - disks[:, 2] <= ys[-1])]
         room, walls = points[inside], wall[inside]
         if len(room):
+            # Cut: within the measure's tolerance of a stop's disk (as the
+            # core's gap below), so that a pin of a few micrometres between
+            # three disks is not taken for a band as thick as the pocket.
             cut = np.zeros(len(room), bool) if not len(near) else \
-                ((np.hypot(room[:, 0:1] - near[:, 0], room[:, 1:2] - near[:, 1]) - near[:, 2]) <= 0).any(axis=1)
+                ((np.hypot(room[:, 0:1] - near[:, 0], room[:, 1:2] - near[:, 1]) - near[:, 2]) <= tol).any(axis=1)
             if (~cut).any():
                 k = int(np.argmax(np.where(cut, -np.inf, walls)))
                 if walls[k] - radial > out["thickest"]:
