@@ -43,10 +43,7 @@ def _edge_chords(edge, tolerance):
     within `tolerance` of it, and the largest deviation measured: OCCT's
     deflection is not a strict bound, so each chord's midpoint is projected
     onto the curve, and the points are refined until within it."""
-    try:
-        curve = edge.Curve
-    except (Part.OCCError, TypeError, RuntimeError):  # a curve type FreeCAD does not wrap
-        curve = None
+    curve = _curve_of(edge)
     if isinstance(curve, Part.Line):
         return [edge.valueAt(edge.FirstParameter), edge.valueAt(edge.LastParameter)], 0.0
 
@@ -67,38 +64,59 @@ def _edge_chords(edge, tolerance):
     return points, deviation
 
 
+def _curve_of(edge):
+    try:
+        return edge.Curve
+    except (Part.OCCError, TypeError, RuntimeError):  # a curve type FreeCAD does not wrap
+        return None
+
+
+def _off_wire(edges, m):
+    """The distance from m to the nearest of the wire's edges: exact on a line,
+    the curve's projection on any other (where FreeCAD wraps the curve)."""
+    best = math.inf
+    for e, curve, box in edges:
+        if not (box.XMin <= m.x <= box.XMax and box.YMin <= m.y <= box.YMax and box.ZMin <= m.z <= box.ZMax):
+            continue
+        if isinstance(curve, Part.Line):
+            a, b = e.Vertexes[0].Point, e.Vertexes[-1].Point
+            ab = b - a
+            t = max(0.0, min(1.0, (m - a).dot(ab) / max(ab.dot(ab), 1e-30)))
+            d = (a + ab * t - m).Length
+        elif curve is not None:
+            d = (curve.value(curve.parameter(m)) - m).Length
+        else:
+            d = e.distToShape(Part.Vertex(m))[0]
+        best = min(best, d)
+    return best
+
+
 def _chords(shape, tolerance):
-    """Points along an edge, or along a wire edge by edge in the wire's order
-    and direction, whose chords stay within `tolerance` of it, and the
-    largest deviation measured (_edge_chords)."""
+    """Points along a wire or edge (OCCT's discretisation of the whole wire)
+    whose chords stay within `tolerance` of it, and the largest deviation
+    measured: OCCT's deflection is not a strict bound, so each chord's middle
+    is measured against the edges near it (a line's distance, a curve's
+    projection: no boolean distance per chord) and the points are refined
+    until within it."""
     if shape.ShapeType == "Edge":
         return _edge_chords(shape, tolerance)
-    out, deviation = [], 0.0
-    edges = shape.OrderedEdges
-    for i, e in enumerate(edges):
-        points, d = _edge_chords(e, tolerance)
-        deviation = max(deviation, d)
-        # Each edge runs on from where the last one ended (the first, toward
-        # the second): the edges' own orientation flags are not to be trusted
-        # on every wire (a slice's).
-        if out:
-            flip = (points[-1] - out[-1]).Length < (points[0] - out[-1]).Length
-        elif e.Orientation == "Reversed" or len(edges) > 1:
-            ends = [v.Point for v in edges[1].Vertexes] if len(edges) > 1 else []
-            near = lambda p: min((p - q).Length for q in ends) if ends else 0.0  # noqa: E731
-            flip = near(points[0]) < near(points[-1]) if ends else e.Orientation == "Reversed"
-        else:
-            flip = False
-        if flip:
-            points.reverse()
-        out.extend(points if not out else points[1:])
-    if len(out) > 1 and ((out[0] - out[-1]).Length <= 1e-4 or shape.isClosed()):
-        # Closed on its very first point (a slice's wire may close within its
-        # tolerance only: a micrometre's gap is no edge).
-        if (out[0] - out[-1]).Length > 1e-4:
-            out.append(out[0])
-        out[-1] = out[0]
-    return out, deviation
+    edges = []
+    for e in shape.Edges:
+        box = e.BoundBox
+        box.enlarge(tolerance * 4 + 1e-6)
+        edges.append((e, _curve_of(e), box))
+    deflection = tolerance
+    for _ in range(6):
+        points = shape.discretize(Deflection=deflection)
+        deviation = 0.0
+        for a, b in zip(points, points[1:]):
+            if (a - b).Length > 1e-9:
+                d = _off_wire(edges, (a + b) * 0.5)
+                deviation = max(deviation, d if math.isfinite(d) else shape.distToShape(Part.Vertex((a + b) * 0.5))[0])
+        if deviation <= tolerance:
+            break
+        deflection *= 0.5
+    return points, deviation
 
 
 def _polyline(wire, tolerance):
