@@ -635,11 +635,8 @@ def _stands(face):
     """The face stands upright everywhere: no shadow in plan view."""
     if _stands_vertical(face):
         return True
-    surface = face.Surface
-    if isinstance(surface, Part.Plane):
+    if isinstance(face.Surface, (Part.Plane, Part.SurfaceOfExtrusion)):
         return False
-    if isinstance(surface, Part.SurfaceOfExtrusion):  # a free-form wall drawn and extruded
-        return abs(abs(surface.Direction.z) - 1) < 1e-9
     try:
         return _shadow_area(face) <= 1e-6 * max(face.Area, 1.0)
     except (Part.OCCError, ValueError):
@@ -702,6 +699,8 @@ def _stands_vertical(face):
         return abs(s.Axis.z) < 1e-9
     if isinstance(s, Part.Cylinder):
         return abs(abs(s.Axis.z) - 1.0) < 1e-9
+    if isinstance(s, Part.SurfaceOfExtrusion):  # a free-form wall drawn and extruded
+        return abs(abs(s.Direction.z) - 1.0) < 1e-9
     return False
 
 
@@ -751,11 +750,23 @@ def _section_heights(walls, lowest, top, band, part_top):
 
 
 def _inside_point(boundary, islands):
-    """A point of the pocket's region (in neither an island nor outside)."""
-    region = _polygon_face(boundary)
-    if islands:
-        region = region.cut([_polygon_face(i) for i in islands])
-    return _face_point(region)
+    """A point of the pocket's region (in neither an island nor outside): the
+    middle of the widest span inside it along a few rows across the outline
+    (even-odd crossings of the loops' edges), no boolean needed."""
+    loops = [boundary] + list(islands)
+    ys = [p[1] for p in boundary]
+    best = None
+    for k in range(1, 8):
+        y = min(ys) + (max(ys) - min(ys)) * k / 8.0
+        xs = sorted(a[0] + (y - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+                    for loop in loops for a, b in zip(loop, loop[1:] + loop[:1]) if (a[1] <= y) != (b[1] <= y))
+        for x0, x1 in zip(xs[::2], xs[1::2]):
+            if best is None or x1 - x0 > best[0]:
+                best = (x1 - x0, V(0.5 * (x0 + x1), y, 0))
+    if best is None:
+        raise GeometryError("the pocket's outline does not close around an area (its edges cross): select the "
+                            "pocket's floor faces again, or refine the part (Part > Refine shape)")
+    return best[1]
 
 
 def _air_at(model, z, at):
@@ -776,7 +787,10 @@ def _air_at(model, z, at):
         # Loops nested in an island (a hole in a boss) are the boss's, not the pocket's.
         islands = [f for f in islands if not any(g is not f and g.Area > f.Area
                                                  and g.isInside(f.Vertexes[0].Point, 1e-6, True) for g in islands)]
-        air = outline.cut(islands) if islands else outline
+        if not islands:
+            return outline
+        # The outline with its islands as holes: a face made of its wires (no boolean).
+        air = Part.makeFace([outline.OuterWire] + [f.OuterWire for f in islands], "Part::FaceMakerBullseye")
         return air.Faces[0] if air.Faces else None
     except (Part.OCCError, ValueError, IndexError):
         bb = model.BoundBox  # the section's loops do not close: the boolean way

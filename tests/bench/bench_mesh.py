@@ -20,7 +20,7 @@ sys.path[:0] = [ROOT, os.path.join(ROOT, "build", "cpp"), os.path.join(ROOT, "re
 
 import FreeCAD  # noqa: E402
 
-from both_planners import PLANNERS, bundle_program, recompute_timed  # noqa: E402
+from both_planners import PLANNERS, bundle_program, program_timed, recompute_timed  # noqa: E402
 from example_part import add_plunge_rough, floor_face_name, freeform_part, make_job  # noqa: E402
 from freecad_plugin import floor_mesh, planner  # noqa: E402
 
@@ -59,5 +59,13 @@ for name, whole, mesh, planning, count, minutes, triangles, _ in rows:
         triangles if triangles is not None else "-"))
 print("through the mesh / through the BREP: recompute %.2f x, planning %.2f x" % (rows[1][1] / rows[0][1],
                                                                                     rows[1][3] / rows[0][3]))
+# The recompute against the program's own plan of the same input: the native
+# program (the README's install plans through it) on the BREP floor.
+native = os.path.join(ROOT, "build", "cpp", "plunge-rough")
+os.environ[planner.ENVIRONMENT] = native
+whole, _, _ = recompute_timed(doc, op, native, REPEAT)
+alone = program_timed(native, json.loads(op.PlanData)["input"], REPEAT, os.path.join(ROOT, "build"))
+print("native program, BREP floor: recompute %.2f s, the program's plan of the same input %.2f s: %.2f x" % (
+    statistics.median(whole), statistics.median(alone), statistics.median(whole) / statistics.median(alone)))
 for row in rows:
     print("planned by", row[-1])

@@ -11,6 +11,23 @@ from freecad_plugin import PlungeRough, planner
 PLANNERS = (("module, BREP floor", False), ("bundle's program, mesh floor", True))
 
 
+def program_timed(program, data, repeat, folder):
+    """The program's own plan of the same input, run standalone (`plunge-rough
+    plan`) `repeat` times: its seconds each, start to exit."""
+    import json
+    import subprocess
+    path = os.path.join(folder, "bench-input.json")
+    with open(path, "w") as f:
+        json.dump(data, f)
+    seconds = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        subprocess.run([program, "plan", path, "-o", os.path.join(folder, "bench-plan.json")], check=True,
+                       capture_output=True)
+        seconds.append(time.perf_counter() - start)
+    return seconds
+
+
 def bundle_program(root):
     """The Linux bundle's program, unzipped into build/bench-bundle."""
     unzipped = os.path.join(root, "build", "bench-bundle")
