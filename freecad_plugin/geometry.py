@@ -27,13 +27,18 @@ class GeometryError(ValueError):
     """The selection cannot be planned; the message says why."""
 
 
+# Points of a polyline closer than this (mm) are one: a section's wire may
+# close, or join its edges, only within its tolerance.
+SAME_POINT = 1e-6
+
+
 def _xy(points):
     out = []
     for p in points:
         q = (round(p.x, 9), round(p.y, 9))
-        if not out or out[-1] != q:
+        if not out or math.hypot(out[-1][0] - q[0], out[-1][1] - q[1]) > SAME_POINT:
             out.append(q)
-    if len(out) > 1 and out[0] == out[-1]:
+    if len(out) > 1 and math.hypot(out[0][0] - out[-1][0], out[0][1] - out[-1][1]) <= SAME_POINT:
         out.pop()
     return [list(q) for q in out]
 

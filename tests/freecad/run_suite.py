@@ -1,5 +1,6 @@
 """pytest inside freecadcmd (Debian's python3 with FreeCAD's modules): the
-suite named by PLUNGE_SUITE, "freecad" (headless), "freecad_gui" (FreeCAD
+suite named by PLUNGE_SUITE, "freecad" (headless; "freecad_allowance" its
+allowance cases, run beside it), "freecad_gui" (FreeCAD
 under xvfb, started by the tests) or "freecad_bundle" (bundle_suite.py). A script file, not `freecadcmd -c`: FreeCAD
 1.1 ends with "Application unexpectedly terminated" on a -c argument of 256
 characters or more."""
@@ -10,7 +11,9 @@ import pytest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SUITES = {
-    "freecad": [HERE, "--ignore=" + os.path.join(HERE, "test_gui.py")],
+    "freecad": [HERE, "--ignore=" + os.path.join(HERE, "test_gui.py"), "--ignore=" + os.path.join(HERE, "test_allowance.py")],
+    # Its longest part, on its own: ctest runs it beside the rest.
+    "freecad_allowance": [os.path.join(HERE, "test_allowance.py")],
     "freecad_gui": [os.path.join(HERE, "test_gui.py")],
     # The end-to-end cases, on a bundle unzipped into the profile (bundle_suite.py).
     "freecad_bundle": [HERE, "--ignore=" + os.path.join(HERE, "test_gui.py"), "-m", "bundle"],
