@@ -837,7 +837,10 @@ Plan plan(PlanInput in, const Progress& progress) {
   validate(in);
   // The pocket without what of the part overhangs its floor (part.hpp), for
   // every tool set the choice tries too; what is left under it is said first.
-  if (in.part) in = withoutOverhangs(std::move(in), *makeFloor(in));
+  if (in.part) {
+    const std::unique_ptr<FloorSurface> floor = makeFloor(in);  // (before `in` is moved)
+    in = withoutOverhangs(std::move(in), *floor);
+  }
   const std::vector<std::string> notes = in.notes;
   Plan out = in.choice.automatic ? planChoosingTools(in, progress) : planWithTools(std::move(in), progress);
   out.warnings.insert(out.warnings.begin(), notes.begin(), notes.end());
