@@ -20,7 +20,7 @@
 # mirror (the test: tests/python/test_debian_sources.py).
 set -eu
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-. "$ROOT/resources/apt.sh"  # mirror
+. "$ROOT/resources/apt.sh"  # mirror, install_missing
 
 # The suites to try, for a release: its own, then the stable ones, bookworm last.
 suites_for() {
@@ -35,6 +35,9 @@ if [ "${1:-}" = --suites-for ]; then suites_for "${2:?--suites-for CODENAME}"; e
 DEST=${1:?usage: debian_sources.sh DEST PACKAGE...}
 shift
 [ $# -gt 0 ] || { echo "sources: no package named" >&2; exit 2; }
+
+# apt-get source unpacks with dpkg-source (dpkg-dev); the keyring checks the suites' indexes.
+install_missing dpkg-dev debian-archive-keyring
 
 codename=$(. /etc/os-release && echo "${VERSION_CODENAME:-bookworm}")
 SUITES=${PLUNGE_SOURCE_SUITES:-$(suites_for "$codename")}
