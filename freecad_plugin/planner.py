@@ -9,13 +9,16 @@ once. It is looked for, in this order:
 1. the environment variable PLUNGE_ROUGH_PLANNER, a command line (a test runs
    `wine /path/plunge-rough.exe` so);
 2. the preference PlannerPath (Preferences/Mod/PlungeRough), a program's path;
-3. the addon's own bin/ (a bundle, or the README's install);
+3. the addon's own bin/: bin/<os>-<arch>/ for this system and machine (the
+   universal zip holds every platform's program so: PLATFORMS), then bin/
+   itself (a platform's own zip, or the README's install);
 4. the compiled module `plunge` beside the addon, planning in FreeCAD's process.
 
 App side: never imports GUI code.
 """
 import json
 import os
+import platform
 import shlex
 import signal
 import stat
@@ -42,13 +45,51 @@ class PlannerFailed(RuntimeError):
     recompute."""
 
 
+# The platforms a program is built for (resources/bundle.sh): the universal
+# zip's bin/<os>-<arch>/ folders, and the platforms' own zips' names.
+PLATFORMS = ("linux-x86_64", "linux-aarch64", "windows-x86_64", "macos-arm64", "macos-x86_64")
+_SYSTEMS = {"linux": "linux", "windows": "windows", "darwin": "macos"}
+# What platform.machine() says for the same architecture on each system.
+_MACHINES = {"x86_64": "x86_64", "amd64": "x86_64", "x64": "x86_64", "aarch64": "aarch64", "arm64": "aarch64",
+             "armv8l": "aarch64"}
+
+
+def platform_tag(system=None, machine=None):
+    """This system's and machine's folder in the universal zip's bin/
+    (PLATFORMS), or None where no program is built for them. macOS calls its
+    ARM arm64, Linux aarch64: the names of the folders follow each system's."""
+    system = (system if system is not None else platform.system()).lower()
+    machine = (machine if machine is not None else platform.machine()).lower()
+    arch = _MACHINES.get(machine)
+    os_ = _SYSTEMS.get(system)
+    if os_ == "macos" and arch == "aarch64":
+        arch = "arm64"
+    tag = "%s-%s" % (os_, arch)
+    return tag if tag in PLATFORMS else None
+
+
 def bundle_name():
-    """The bundle for this machine, or None where there is none (macOS)."""
-    if sys.platform.startswith("win"):
-        return "PlungeRough-windows-x86_64.zip"
-    if sys.platform.startswith("linux"):
-        return "PlungeRough-linux-x86_64.zip"
+    """The platform's own zip for this machine, or None where none is built."""
+    tag = platform_tag()
+    return "PlungeRough-%s.zip" % tag if tag else None
+
+
+def bundled_program(addon=None):
+    """The addon's own program for this machine (the module's docstring, 3.):
+    bin/<os>-<arch>/, then bin/; None when there is none."""
+    addon = addon or ADDON
+    tag = platform_tag()
+    for path in ([os.path.join(addon, "bin", tag, PROGRAM)] if tag else []) + [os.path.join(addon, "bin", PROGRAM)]:
+        if _executable(path):
+            return path
     return None
+
+
+def _built_for(addon):
+    """The platforms whose programs the addon's bin/ holds (a universal zip's)."""
+    folder = os.path.join(addon, "bin")
+    return [t for t in PLATFORMS if os.path.isfile(os.path.join(folder, t, "plunge-rough.exe" if t.startswith("windows")
+                                                                 else "plunge-rough"))]
 
 
 def install_command(addon=None):
@@ -68,6 +109,16 @@ def missing_planner_message(error=None, addon=None):
     addon = addon or ADDON
     why = " (%s)" % error if error else ""
     bundle = bundle_name()
+    built = _built_for(addon)
+    if built and not platform_tag():
+        # A universal zip on a system or machine no program is built for.
+        message = ("the planner is not built for this system and machine (%s, %s): %s/bin holds programs for %s "
+                   "only; build the planner from source (docs/install.md, \"From source\") and set its path in "
+                   "the preference %s" % (platform.system(), platform.machine(), addon, ", ".join(built),
+                                          PREFERENCE))
+        command = install_command(addon)
+        return message + ("; or build and install it for this FreeCAD, as root on Debian: %s" % command
+                          if command else "")
     if bundle:
         get = ("get %s from PlungeRough's releases and unzip it into FreeCAD's Mod folder (%s), replacing this "
                "folder: it holds the addon and its planner" % (bundle, os.path.dirname(addon)))
@@ -242,8 +293,8 @@ def planner():
         if not _executable(path):
             raise ValueError("the planner set in the preferences (%s) is not a program: %s" % (PREFERENCE, path))
         return _cached([path], "the preference %s" % PREFERENCE)
-    bundled = os.path.join(ADDON, "bin", PROGRAM)
-    if _executable(bundled):
+    bundled = bundled_program()
+    if bundled:
         return _cached([bundled], "the addon's bin")
     try:
         import plunge

@@ -527,7 +527,8 @@ json planToValue(const Plan& plan) {
                   {"minutes_at_safe_height", s.minutesAtSafeHeight},
                   {"boundary_tolerance", s.boundaryTolerance},
                   {"pecked_plunges", s.peckedPlunges},
-                  {"depth_fallbacks", s.depthFallbacks}};
+                  {"depth_fallbacks", s.depthFallbacks},
+                  {"floor_kind", s.floorKind}};
   if (!plan.warnings.empty()) out["warnings"] = plan.warnings;
   if (!plan.broken.empty()) {
     json broken = json::array();

@@ -105,6 +105,17 @@ std::unique_ptr<FloorSurface> makeFloor(const PlanInput& in) {
   return makeBrepFloor(resolveInputPath(in, in.floor.surface.brep));
 }
 
+// The floor kind's name in the plan (PlanStats::floorKind).
+const char* floorKindName(Floor::Kind kind) {
+  switch (kind) {
+    case Floor::Kind::Flat: return "flat";
+    case Floor::Kind::Expression: return "expression";
+    case Floor::Kind::Brep: return "brep";
+    case Floor::Kind::Mesh: return "mesh";
+  }
+  return "";
+}
+
 // A floor or a plunger that is not flat: plunges stop at different heights.
 bool isSculptured(const PlanInput& in, const FloorSurface& floor) {
   return !floor.isFlat() || std::any_of(in.tools.begin(), in.tools.end(),
@@ -1010,6 +1021,7 @@ Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const
   out.stockMap = measured.stock.map;
   PlanStats& st = out.stats;
   st.plungeCount = counts.plungeCount;
+  st.floorKind = floorKindName(in.floor.surface.kind);
   st.perTool = counts.perTool;
   st.startHoles = counts.startHoles;
   st.floorStockPlunges = counts.floorStockPlunges;

@@ -6,6 +6,15 @@
 
 namespace plunge {
 
+// What the plan's depths were found on: the bundles' program reads a floor of
+// faces as the addon's mesh, the README's install as the faces themselves.
+std::string floorKindSaid(const std::string& kind) {
+  if (kind == "brep") return "depths on the floor's faces";
+  if (kind == "mesh") return "depths on the floor's faces as a mesh";
+  if (kind == "expression") return "depths on the floor's expression";
+  return "a flat floor";
+}
+
 std::string planSummary(const Plan& plan) {
   const PlanStats& st = plan.stats;
   std::ostringstream s;
@@ -46,6 +55,7 @@ std::string planSummary(const Plan& plan) {
   if (st.minutesAtSafeHeight > st.estimatedMinutes + 0.05)
     s << " (" << st.minutesAtSafeHeight - st.estimatedMinutes << " min saved by stock-aware heights)";
   if (plan.selection) s << "; " << choiceSummary(*plan.selection);
+  s << "; " << floorKindSaid(st.floorKind);
   return s.str();
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "detail.hpp"
+#include "plunge/summary.hpp"
 
 namespace plunge {
 
@@ -329,7 +330,8 @@ class SvgPicture {
 
   void planLegend() {
     line(0, "The plan: " + std::to_string(plan_.stats.plungeCount) + " plunges, travel " +
-                number(plan_.stats.travelLength) + " mm, about " + number(plan_.stats.estimatedMinutes) + " min");
+                number(plan_.stats.travelLength) + " mm, about " + number(plan_.stats.estimatedMinutes) + " min, " +
+                floorKindSaid(plan_.stats.floorKind));
     for (const ToolCount& t : plan_.stats.perTool) {
       const char* c = kPalette[colour_[t.toolId] % 8];
       s_ << "<circle cx=\"" << lo_.x + fs_ * 0.5 << "\" cy=\"" << y_ + fs_ * 0.6 << "\" r=\"" << fs_ * 0.45

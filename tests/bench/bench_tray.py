@@ -17,40 +17,20 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path[:0] = [ROOT, os.path.join(ROOT, "build", "cpp"), os.path.join(ROOT, "resources", "examples"),
-                os.path.dirname(os.path.abspath(__file__))]
+                os.path.dirname(os.path.abspath(__file__)), os.path.join(ROOT, "tests", "freecad")]
 
 import FreeCAD  # noqa: E402
-import Part  # noqa: E402
 
 from example_part import add_plunge_rough, make_job  # noqa: E402
+from parts import tray, tray_floor  # noqa: E402
 from both_planners import PLANNERS, bundle_program, recompute_timed  # noqa: E402
 from freecad_plugin import PlungeRough, planner  # noqa: E402
 
 REPEAT = int(os.environ.get("PLUNGE_BENCH_REPEAT", "3"))
 if not os.path.abspath(PlungeRough.__file__).startswith(ROOT):
     sys.exit("the addon was loaded from %s, not this tree: run with a fresh XDG_DATA_HOME" % PlungeRough.__file__)
-V = FreeCAD.Vector
-
-
-def at_floor(edge, z=15.0):
-    b = edge.BoundBox
-    return abs(b.ZMin - z) < 1e-6 and abs(b.ZMax - z) < 1e-6 and b.XMin > 1 and b.YMin > 1 and b.XMax < 319 \
-        and b.YMax < 233
-
-
-def tray():
-    shape = Part.makeBox(320, 234, 45).cut(Part.makeBox(280, 194, 50, V(20, 20, 15))).removeSplitter()
-    walls = [e for e in shape.Edges if e.BoundBox.ZLength > 29 and e.BoundBox.XLength < 1e-6
-             and e.BoundBox.YLength < 1e-6 and 19 < e.BoundBox.XMin < 301 and 19 < e.BoundBox.YMin < 215]
-    shape = shape.makeFillet(12, walls)
-    shape = shape.makeFillet(6, [e for e in shape.Edges if at_floor(e)])
-    assert shape.isValid()
-    return shape
-
-
 part = tray()
-floor = next("Face%d" % (i + 1) for i, f in enumerate(part.Faces)
-             if isinstance(f.Surface, Part.Plane) and abs(f.BoundBox.ZMax - 15) < 1e-6 and f.Area > 40000)
+floor = tray_floor(part)
 doc = FreeCAD.newDocument("BenchTray")
 job = make_job(doc, part)
 op, tcs = add_plunge_rough(job, floor, diameters=(12, 8, 5), MaxFloorStock=1.0, RadialAllowance=0.5,

@@ -8,8 +8,8 @@ import Part
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
                                 "resources", "examples"))
-from example_part import (add_plunge_rough, add_tool_controller, floor_face_name, freeform_part,  # noqa: E402,F401
-                          make_job)
+from example_part import (add_plunge_rough, add_tool_controller, closed_bspline, floor_face_name,  # noqa: E402,F401
+                          freeform_part, make_job, prism)
 
 V = FreeCAD.Vector
 
@@ -23,3 +23,28 @@ def islands_part():
     return block.cut(pocket).removeSplitter()
 
 
+
+
+def _at_floor(edge, z=15.0):
+    b = edge.BoundBox
+    return abs(b.ZMin - z) < 1e-6 and abs(b.ZMax - z) < 1e-6 and b.XMin > 1 and b.YMin > 1 and b.XMax < 319 \
+        and b.YMax < 233
+
+
+def tray():
+    """A tray like NIST's: a 280 x 194 mm pocket 30 mm deep in a block, its
+    walls rounded R12 and its floor edges filleted R6 (Part booleans and
+    fillets, as a user models it)."""
+    shape = Part.makeBox(320, 234, 45).cut(Part.makeBox(280, 194, 50, V(20, 20, 15))).removeSplitter()
+    walls = [e for e in shape.Edges if e.BoundBox.ZLength > 29 and e.BoundBox.XLength < 1e-6
+             and e.BoundBox.YLength < 1e-6 and 19 < e.BoundBox.XMin < 301 and 19 < e.BoundBox.YMin < 215]
+    shape = shape.makeFillet(12, walls)
+    shape = shape.makeFillet(6, [e for e in shape.Edges if _at_floor(e)])
+    assert shape.isValid()
+    return shape
+
+
+def tray_floor(shape):
+    """The tray's floor face's name."""
+    return next("Face%d" % (i + 1) for i, f in enumerate(shape.Faces)
+                if isinstance(f.Surface, Part.Plane) and abs(f.BoundBox.ZMax - 15) < 1e-6 and f.Area > 40000)

@@ -76,6 +76,43 @@ def test_no_planner_names_the_bundle_to_get(fresh, monkeypatch):
         in str(e.value)
 
 
+@pytest.mark.parametrize("system, machine, tag", [
+    ("Linux", "x86_64", "linux-x86_64"), ("Linux", "aarch64", "linux-aarch64"), ("Linux", "arm64", "linux-aarch64"),
+    ("Windows", "AMD64", "windows-x86_64"), ("Darwin", "arm64", "macos-arm64"), ("Darwin", "x86_64", "macos-x86_64"),
+    ("Windows", "ARM64", None), ("Linux", "ppc64le", None), ("FreeBSD", "amd64", None)])
+def test_each_system_and_machine_has_its_folder(system, machine, tag):
+    assert planner.platform_tag(system, machine) == tag
+
+
+def test_the_universal_zip_gives_this_machine_its_own_program(fresh, monkeypatch):
+    """bin/<os>-<arch>/ of this machine first, then bin/ itself; on a machine
+    none is built for, the message names the system and machine found."""
+    here = planner.platform_tag()
+    assert here == "linux-x86_64"  # the machines the suite runs on
+    for tag in planner.PLATFORMS:
+        (fresh / "bin" / tag).mkdir()
+        name = "plunge-rough.exe" if tag.startswith("windows") else "plunge-rough"
+        target = fresh / "bin" / tag / name
+        if tag == here:
+            shutil.copy(PROGRAM, target)
+            os.chmod(target, 0o644)  # the Addon Manager's unzip drops the execute bit
+        else:
+            target.write_bytes(b"not this machine's")
+    shutil.copy(PROGRAM, fresh / "bin" / "plunge-rough")
+    found = planner.planner()
+    assert found.argv == [str(fresh / "bin" / here / "plunge-rough")]
+    assert found.plan({"version": 1, "boundary": [[0, 0], [50, 0], [50, 30], [0, 30]], "tools": [{"diameter": 10}],
+                       "top_z": 0, "safe_z": 5, "floor": {"z": -5}})["plunges"]
+    monkeypatch.setattr(planner, "_found", {})
+    monkeypatch.setattr(planner.platform, "machine", lambda: "riscv64")
+    os.remove(fresh / "bin" / "plunge-rough")
+    monkeypatch.setitem(sys.modules, "plunge", None)
+    with pytest.raises(ValueError) as e:
+        planner.planner()
+    assert "the planner is not built for this system and machine (Linux, riscv64)" in str(e.value)
+    assert "linux-x86_64, linux-aarch64, windows-x86_64, macos-arm64, macos-x86_64 only" in str(e.value)
+
+
 class Recorder:
     """subprocess.Popen as the planner calls it, each process kept."""
 

@@ -327,6 +327,9 @@ struct PlanStats {
   int levels = 1;               // most levels any tool needs for its flute length
   double minutesAtSafeHeight = 0.0;  // the time model with every move at safe_z
   double boundaryTolerance = 0.0;  // mm the walls were simplified by (limits.hpp), added to the radial allowance
+  // The floor as the planner read it: "flat", "expression", "brep" (faces) or
+  // "mesh" (the bundles' program gets a floor of faces as the addon's mesh).
+  std::string floorKind;
   int peckedPlunges = 0;   // holes into solid pecked (motion.hpp)
   int depthFallbacks = 0;  // floor faces, edges or plunges whose depth search ran out of budget: sampled densely (depth.hpp)
 };
