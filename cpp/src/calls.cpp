@@ -88,8 +88,17 @@ json aboutCall() {
 #else
   const char* system = "linux";
 #endif
+  // The folder of the universal zip's bin/ this program is built for
+  // (resources/bundle.sh): macOS names its ARM arm64, Linux aarch64.
+#if defined(__aarch64__) || defined(_M_ARM64)
+  const std::string arch = std::string(system) == "macos" ? "arm64" : "aarch64";
+#elif defined(__x86_64__) || defined(_M_X64)
+  const std::string arch = "x86_64";
+#else
+  const std::string arch = "other";
+#endif
   return {{"planner", std::string("PlungeRough ") + PLUNGE_VERSION}, {"version", PLUNGE_VERSION},
-          {"system", system}, {"floors", floors}};
+          {"system", system}, {"platform", std::string(system) + "-" + arch}, {"floors", floors}};
 }
 
 json call(const json& request, const Progress& progress) {

@@ -72,3 +72,17 @@ def test_the_constants_are_a_leaf_and_the_pure_modules_import_no_document():
 def test_the_operation_module_is_the_proxy():
     lines = open(os.path.join(PLUGIN, "PlungeRough.py")).read().count("\n")
     assert lines <= 400, lines
+
+
+def test_one_version_everywhere():
+    """package.xml's version is the planner's (CMake's project version) and
+    CHANGELOG.md's newest entry; package.xml sets no maximum FreeCAD (the
+    Addon Manager hides an addon whose freecadmax is below the running one:
+    FreeCAD's next release is 26.3)."""
+    package = open(os.path.join(ROOT, "package.xml")).read()
+    version = re.search(r"<version>([^<]+)</version>", package).group(1)
+    cmake = re.search(r"project\(PlungeRough VERSION (\S+)", open(os.path.join(ROOT, "CMakeLists.txt")).read())
+    assert cmake and cmake.group(1) == version
+    newest = re.search(r"^## (\S+)", open(os.path.join(ROOT, "CHANGELOG.md")).read(), re.MULTILINE)
+    assert newest and newest.group(1) == version
+    assert "freecadmax" not in package.lower()

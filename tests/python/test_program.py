@@ -95,6 +95,7 @@ def test_about_names_the_build(plunge, cli):
     about = json.loads(run.stdout)
     assert about == plunge.about()
     assert about["system"] == "linux" and set(about["floors"]) == {"z", "expression", "mesh", "brep"}
+    assert about["platform"] == "linux-x86_64"
 
 
 @pytest.mark.parametrize("request_text,message", [
