@@ -1,14 +1,22 @@
-"""The Linux bundle as a user installs it (docs/install.md), then FreeCAD's
+"""A bundle as a user installs it (docs/install.md), then FreeCAD's
 end-to-end cases on it (the tests marked "bundle": a pocket, a sculptured
 floor and the 3D allowance through its mesh, rest plunging, a cancel, the
 simulator and the posts).
 
-The zip (PLUNGE_TEST_BUNDLE; tests/run.sh makes it with resources/bundle.sh)
-is unzipped with Python's zipfile, as FreeCAD's Addon Manager unpacks, so the
-program loses its execute bit, into the Mod folder of a fresh FreeCAD profile.
+The zip is PLUNGE_TEST_BUNDLE: a platform's own (tests/run.sh makes the Linux
+one with resources/bundle.sh), or the universal one (PlungeRough-<version>.zip,
+resources/bundle.sh all: every platform's program in bin/<os>-<arch>/, and a
+package.xml beside its PlungeRough/ folder that leads FreeCAD to it).
+- FreeCAD 1.0 and later install the universal zip with their own Addon
+  Manager installer code (addon_manager_install.py), from a local URL served
+  here, as a catalogue entry's zip_url is installed: it unpacks the zip into
+  Mod/PlungeRough/ as it is, with Python's zipfile (execute bits lost).
+- Otherwise (a platform's zip, or FreeCAD 0.20, whose Addon Manager has no
+  installer to run headless) the zip is unzipped with Python's zipfile into
+  the Mod folder, as a user unzips it there.
 freecadcmd then runs the cases with that profile: the addon is the one FreeCAD
-loaded from there, it plans through the bundle's program, and neither the
-build tree nor a compiled module is on its path.
+loaded from there, it plans through the bundle's program (the one for this
+machine), and neither the build tree nor a compiled module is on its path.
 
 PLUNGE_BUNDLE_WINE=1 (the Windows bundle, tests/portable/run.sh): its program
 runs under wine, named to the addon by PLUNGE_ROUGH_PLANNER, with a wine
@@ -16,10 +24,13 @@ prefix of its own.
 
 Run by Debian's python3 (ctest "freecad_bundle"); PLUNGE_BUNDLE_HOME is the
 profile's folder, made anew."""
+import functools
+import http.server
 import os
 import shutil
 import subprocess
 import sys
+import threading
 import zipfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -42,12 +53,35 @@ def freecad(script, *extra):
                           timeout=3600)
 
 
-said = freecad("import FreeCAD\nprint('MODDIR=' + FreeCAD.getUserAppDataDir() + 'Mod')\n")
-mod = [l for l in said.stdout.replace("\r", "\n").splitlines() if l.startswith("MODDIR=")][0][len("MODDIR="):]
+said = freecad("import FreeCAD, os\nprint('MODDIR=' + FreeCAD.getUserAppDataDir() + 'Mod')\n"
+              "print('INSTALLER=%d' % os.path.isfile(os.path.join(FreeCAD.getHomePath(), 'Mod', 'AddonManager', "
+              "'addonmanager_installer.py')))\n")
+lines = said.stdout.replace("\r", "\n").splitlines()
+mod = [l for l in lines if l.startswith("MODDIR=")][0][len("MODDIR="):]
+has_installer = "INSTALLER=1" in lines
 with zipfile.ZipFile(bundle) as z:
-    z.extractall(mod)
-addon = os.path.join(mod, "PlungeRough")
-print("bundle_suite: %s unzipped into %s" % (os.path.basename(bundle), mod), flush=True)
+    universal = "package.xml" in z.namelist()
+if universal and has_installer:
+    # Served from here, downloaded by the Addon Manager's code in freecadcmd.
+    handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=os.path.dirname(bundle))
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    env["PLUNGE_AM_URL"] = "http://127.0.0.1:%d/%s" % (server.server_address[1], os.path.basename(bundle))
+    run = freecad(open(os.path.join(HERE, "addon_manager_install.py")).read())
+    server.shutdown()
+    installed = [l for l in run.stdout.replace("\r", "\n").splitlines() if l.startswith("INSTALLED=")]
+    if run.returncode != 0 or not installed:
+        sys.exit("bundle_suite: FreeCAD's Addon Manager did not install %s:\n%s%s" % (
+            os.path.basename(bundle), run.stdout[-3000:], run.stderr[-3000:]))
+    # The package.xml beside PlungeRough/ leads FreeCAD to the addon in it.
+    addon = os.path.join(installed[0][len("INSTALLED="):], "PlungeRough")
+    print("bundle_suite: %s installed by FreeCAD's Addon Manager into %s" % (os.path.basename(bundle), mod),
+          flush=True)
+else:
+    with zipfile.ZipFile(bundle) as z:
+        z.extractall(mod)
+    addon = os.path.join(mod, "PlungeRough")
+    print("bundle_suite: %s unzipped into %s" % (os.path.basename(bundle), mod), flush=True)
 env.update(PLUNGE_ADDON=addon, PLUNGE_SUITE="freecad_bundle")
 if os.environ.get("PLUNGE_BUNDLE_WINE") == "1":
     env.update(WINEPREFIX=os.path.join(home, "wine"), WINEDEBUG="-all", WINEDLLOVERRIDES="mscoree,mshtml=",

@@ -1,6 +1,7 @@
 """The bundle's suite checks what it runs on (bundle_suite.py): the addon that
 FreeCAD loaded from the profile's Mod folder, its program found in its bin/
-(its execute bit given back), no compiled module, and floors of faces sent as
+(the universal zip's: bin/<os>-<arch>/ of this machine; its execute bit given
+back), no compiled module, and floors of faces sent as
 meshes. Runs only there."""
 import os
 import stat
@@ -24,8 +25,11 @@ def test_the_addon_is_the_bundles_and_plans_through_its_program():
         assert found.argv[-1] == os.path.join(ADDON, "bin", "plunge-rough.exe")
         assert found.about()["system"] == "windows"
     else:
-        program = os.path.join(ADDON, "bin", planner.PROGRAM)
+        # A platform's zip: bin/; the universal zip: this machine's bin/<os>-<arch>/.
+        universal = os.path.join(ADDON, "bin", planner.platform_tag(), planner.PROGRAM)
+        program = universal if os.path.isfile(universal) else os.path.join(ADDON, "bin", planner.PROGRAM)
         assert found.argv == [program] and found.where == "the addon's bin"
+        assert found.about()["platform"] == planner.platform_tag()
         # Unzipped without its execute bit, given back when the addon started.
         assert os.stat(program).st_mode & stat.S_IXUSR
     # Built without OpenCASCADE: the faces of a floor go to it as a mesh.
