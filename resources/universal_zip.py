@@ -1,7 +1,17 @@
 #!/usr/bin/env python3
 """The universal bundle (resources/bundle.sh all): one zip with one folder
 PlungeRough/, the addon once and every platform's program in its own folder,
-PlungeRough/bin/OS-ARCH/plunge-rough[.exe] with its build-info.txt.
+PlungeRough/bin/OS-ARCH/plunge-rough[.exe] with its build-info.txt; and
+beside that folder a package.xml that leads FreeCAD to it.
+
+FreeCAD's Addon Manager installs a release zip (a catalogue entry's zip_url)
+by unpacking it as it is into Mod/PlungeRough/: the addon would end up one
+folder too deep, in Mod/PlungeRough/PlungeRough/, where FreeCAD does not look.
+FreeCAD (0.20 and later) reads Mod/<folder>/package.xml first and runs the
+Init.py of each workbench's <subdirectory>: the outer package.xml (the
+addon's own, its subdirectory and icon one folder down) makes that folder
+PlungeRough/. Unzipped by hand into Mod, the zip gives Mod/PlungeRough/ as
+before, and a package.xml in Mod that FreeCAD passes over.
 
     python3 resources/universal_zip.py OUT.zip OS-ARCH=PLATFORM.zip...
 
@@ -12,11 +22,24 @@ in the platform zips' order (a folder's files, then its folders, by name),
 with their dates and modes (the execute bit) as there, so the same zips make
 the same universal zip."""
 import os
+import re
 import sys
 import zipfile
 
 BIN = "PlungeRough/bin/"
 PROGRAM_FILES = ("plunge-rough", "plunge-rough.exe", "build-info.txt")
+
+
+def outer_package(inner):
+    """The addon's package.xml as seen from the folder above it: its
+    workbench's subdirectory and its icon in PlungeRough/."""
+    text = inner.decode("utf-8")
+    text, subdirectories = re.subn(r"<subdirectory>\./?</subdirectory>", "<subdirectory>./PlungeRough</subdirectory>",
+                                   text)
+    text, icons = re.subn(r"<icon>([^<]+)</icon>", r"<icon>PlungeRough/\1</icon>", text)
+    if subdirectories != 1 or icons != 1:
+        raise ValueError("PlungeRough/package.xml: expected one <subdirectory>./</subdirectory> and one <icon>")
+    return text.encode("utf-8")
 
 
 def walk_order(name):
@@ -64,6 +87,8 @@ def main(argv):
                     path, argv[2].split("=", 1)[1], ", ".join(differ[:5])), file=sys.stderr)
                 return 1
     entries.update(common)
+    inner, data = entries["PlungeRough/package.xml"]
+    entries["package.xml"] = (inner, outer_package(data))
     with zipfile.ZipFile(out + ".part", "w", zipfile.ZIP_DEFLATED) as z:
         for name in sorted(entries, key=walk_order):
             info, data = entries[name]

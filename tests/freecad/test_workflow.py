@@ -167,9 +167,11 @@ def test_planning_reports_progress_and_can_be_aborted(doc, monkeypatch):
     monkeypatch.setattr(FreeCAD.Base, "ProgressIndicator", Indicator)
     op.touch()
     doc.recompute()
-    # Through a program, the status bar says so until its first stage.
+    # Through a program, the status bar says so until its first stage, then
+    # the stage the planner is in at each poll (0.1 s: a quick stage may pass
+    # between two polls unseen).
     stages = [c for c in calls if c not in ("next", "stop") and ": starting the planner" not in c]
-    assert stages[0].startswith(op.Label + ": checking the pocket") and calls[-1] == "stop"
+    assert stages and all(c.startswith(op.Label + ": ") for c in stages) and calls[-1] == "stop"
     assert op.Summary.startswith("planning cancelled")
     assert not [c for c in op.Path.Commands if c.Name in ("G1", "G81", "G83")]
     # The operation waits for the next recompute, which plans it again.

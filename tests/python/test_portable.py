@@ -322,12 +322,14 @@ def version():
 def test_the_universal_zip_holds_every_program():
     """dist/PlungeRough-VERSION.zip: one folder PlungeRough/, the addon once,
     each platform's program and build-info.txt in bin/OS-ARCH/, byte for byte
-    its platform zip's; nothing directly in bin/."""
+    its platform zip's; nothing directly in bin/; beside the folder, the
+    addon's package.xml leading FreeCAD into it (what the Addon Manager's
+    unpacking into Mod/PlungeRough/ needs: bundle_suite.py installs it so)."""
     path = os.path.join(DIST, "PlungeRough-%s.zip" % version())
     need(path, os.path.isfile(path))
     with zipfile.ZipFile(path) as z:
         names = z.namelist()
-        check_bundle(names, "linux-x86_64/plunge-rough")
+        check_bundle([n for n in names if n != "package.xml"], "linux-x86_64/plunge-rough")
         in_bin = [n[len("PlungeRough/bin/"):] for n in names if n.startswith("PlungeRough/bin/")]
         assert sorted({n.split("/")[0] for n in in_bin}) == sorted(PLATFORMS) and all("/" in n for n in in_bin), in_bin
         for name, program in PLATFORMS.items():
@@ -339,8 +341,16 @@ def test_the_universal_zip_holds_every_program():
                     assert z.read(ours) == p.read("PlungeRough/bin/" + f), (name, f)
                     assert ours.external_attr == p.getinfo("PlungeRough/bin/" + f).external_attr, (name, f)
                 addon = sorted(n for n in p.namelist() if not n.startswith("PlungeRough/bin/"))
-                assert addon == sorted(n for n in names if not n.startswith("PlungeRough/bin/")), name
+                assert addon == sorted(n for n in names if not n.startswith("PlungeRough/bin/")
+                                       and n != "package.xml"), name
             assert ("(%s): %s" % (name, program)) in z.read("PlungeRough/bin/%s/build-info.txt" % name).decode()
+        assert [n for n in names if not n.startswith("PlungeRough/")] == ["package.xml"]
+        outer, inner = z.read("package.xml").decode(), z.read("PlungeRough/package.xml").decode()
+        assert "<subdirectory>./PlungeRough</subdirectory>" in outer and "<subdirectory>./</subdirectory>" in inner
+        icon = re.search(r"<icon>([^<]+)</icon>", outer).group(1)
+        assert icon.startswith("PlungeRough/") and icon in names
+        assert re.sub(r"<subdirectory>[^<]*</subdirectory>|<icon>[^<]*</icon>", "", outer) == \
+            re.sub(r"<subdirectory>[^<]*</subdirectory>|<icon>[^<]*</icon>", "", inner)
 
 
 def test_sha256sums_lists_every_zip():
