@@ -15,6 +15,7 @@ buttons, the tree's delete, undo and redo, the simulators' own panels.
 4. A plunge mill bit from the tool library, opened in FreeCAD's editor.
 Any modal dialog is recorded and closed; the report view's errors are read at
 the end. Results go to $PLUNGE_GUI_OUT/gui_result.json, screenshots beside it."""
+import gc
 import json
 import math
 import os
@@ -799,7 +800,24 @@ def plunge_mill_bit():
         # watch_dialogs takes the picture and closes it.
         from Path.Tool.toolbit.ui.editor import ToolBitEditor
         answer["editor"] = "plunge_mill_bit.png"
-        ToolBitEditor(compat.tool_library().get("toolbit://" + os.path.splitext(name)[0])).show()
+        bit = compat.tool_library().get("toolbit://" + os.path.splitext(name)[0])
+        # FreeCAD 1.1.3's editor now and then finds its .ui's toolTabLayout
+        # wrapped as a QWidget (PySide6's stale-wrapper family, as in
+        # report_view.UPSTREAM_BUGS) and fails in its own __init__; a user
+        # would press Edit again, and so does this test, at most twice.
+        attempts = 0
+        while True:
+            try:
+                editor = ToolBitEditor(bit)
+                break
+            except AttributeError:
+                frames = traceback.extract_tb(sys.exc_info()[2])
+                if attempts == 2 or not frames[-1].filename.endswith(os.path.join("toolbit", "ui", "editor.py")):
+                    raise
+                attempts += 1
+                gc.collect()
+        result["plunge_mill"]["editor_attempts"] = attempts
+        editor.show()
         result["plunge_mill"]["editor"] = answer["editor"] is None
     step("plunge mill in the tool bit editor")
 
