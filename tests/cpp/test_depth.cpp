@@ -225,7 +225,7 @@ TEST(Depth, SeveralFacesMeetingAtARidge) {
 // Distance from a point at (rho from the axis, height h) to the solid of a
 // cutter with its tip at z (its profile, then its side straight up), sampled
 // along the profile every 2 um: the 3D distance, the solid being round.
-double distanceToCutter(const Cutter& k, double z, double rho, double h) {
+static double distanceToCutter(const Cutter& k, double z, double rho, double h) {
   if (rho <= k.radius && h >= z + cutterProfile(k, rho)) return 0.0;
   double best = rho > k.radius && h >= z + cutterProfile(k, k.radius) ? rho - k.radius : 1e9;
   for (double t = 0; t <= k.radius; t += 0.002)

@@ -97,6 +97,7 @@ TEST(Motion, ShortFlutesCutInLevels) {
 
 // A 100 x 60 mm box, flat floor at -20, one 20 mm tool, a 1 mm lead-out:
 // the machine's options alone, for plunges made by hand.
+namespace {
 struct HandMadeBox {
   const Region region{{{0, 0}, {100, 0}, {100, 60}, {0, 60}}, {}};
   const std::unique_ptr<FloorSurface> floor = makeFlatFloor(-20);
@@ -110,6 +111,7 @@ struct HandMadeBox {
     return m;
   }();
 };
+}  // namespace
 
 // Levels: every other one runs the path backwards, so it starts where the one
 // above ended; a tool with an engagement limit keeps its order (it keeps each

@@ -116,7 +116,7 @@ TEST(Plan, ToolThatFitsNowhereGetsNoPlunge) {
 // core cut whole and no thicker wall stock; without a band, coverage at least 99.5 %.
 class Shapes : public ::testing::TestWithParam<const char*> {};
 
-void expectNoGouge(const PlanInput& in, const Plan& p) {
+static void expectNoGouge(const PlanInput& in, const Plan& p) {
   std::vector<Loop> loops{in.boundary};
   loops.insert(loops.end(), in.islands.begin(), in.islands.end());
   for (const Plunge& q : p.plunges) {

@@ -64,7 +64,7 @@ TEST(Selection, TimeModelAddsUpThePlan) {
 
 // Every set the choice looked at (the subsets of the candidates with the
 // smallest, and the library as given) planned in full: its true minutes.
-std::map<std::vector<double>, double> plannedTruth(const PlanInput& in, const ToolSelection& sel) {
+static std::map<std::vector<double>, double> plannedTruth(const PlanInput& in, const ToolSelection& sel) {
   std::map<std::vector<double>, double> truth;
   for (const ToolSetResult& r : sel.sets) {
     PlanInput sub = in;
@@ -82,7 +82,7 @@ std::map<std::vector<double>, double> plannedTruth(const PlanInput& in, const To
 // estimate can tell), comes within a few per cent of the true optimum, its
 // estimates are within 5 % of the true times (5.3), and every bound is a true
 // lower bound (5.4).
-void expectAGoodChoice(const PlanInput& in, bool estimatesHonest) {
+static void expectAGoodChoice(const PlanInput& in, bool estimatesHonest) {
   const Plan chosen = plan(in);
   ASSERT_TRUE(chosen.selection);
   const ToolSelection& sel = *chosen.selection;
