@@ -31,13 +31,6 @@ def write_pictures(workdir, plan):
             f.write(picture)
 
 
-def plan_pictures(obj):
-    """[(title, path)] of the pictures of the operation's last plan that exist."""
-    folder = plan_folder(obj, create=False)
-    return [(title, os.path.join(folder, name)) for _, name, title in PICTURES
-            if os.path.exists(os.path.join(folder, name))]
-
-
 def plan_picture(obj, name="plan.svg"):
     """Path of one picture of the operation's last plan (plan.svg: the plan)."""
     return os.path.join(plan_folder(obj, create=False), name)

@@ -378,8 +378,6 @@ json parsed(const std::string& text, const std::string& what) {
 
 }  // namespace
 
-std::vector<Tool> toolsFromJson(const std::string& text) { return toolsFromValue(parsed(text, "tools: ")); }
-
 std::vector<Tool> toolsFromValue(const json& value) {
   std::vector<std::string> notes;
   return toolList(value, "tools", notes);

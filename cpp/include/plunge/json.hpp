@@ -15,7 +15,6 @@ PlanInput planInputFromJson(const std::string& text);
 PlanInput readPlanInput(const std::string& path);
 
 // A list of tools as in the input's "tools" (ids as given, not yet checked).
-std::vector<Tool> toolsFromJson(const std::string& text);
 std::vector<Tool> toolsFromValue(const nlohmann::json& value);
 // The input's "material": the top of the material the operations before left,
 // over a raster.
@@ -30,7 +29,7 @@ TourMethod tourMethodFromName(const std::string& name);      // "sequencing"
 GridPattern gridPatternFromName(const std::string& name);    // "grid": {"pattern"}
 Coolant coolantFromName(const std::string& name);            // "coolant"
 
-// The plan: plunges, statistics, warnings, the tool choice (docs/plan-schema.json).
+// The plan: plunges, statistics, warnings, the tool choice (docs/plan-output.schema.json).
 std::string planToJson(const Plan& plan);
 
 // The same as JSON values, for a front end that holds its data as values
