@@ -288,8 +288,8 @@ class ObjectPlungeRough(PathOp.ObjectOp):
                                                      "(the next recompute)")))
             FreeCAD.addDocumentObserver(_PlanAgain(obj))
             return
-        except (planner.ABORT, RuntimeError) as e:  # the user aborted (Esc): said, nothing cut
-            if not planner.is_abort(e):
+        except (planner.ABORT, planner.Cancelled, RuntimeError) as e:  # the user aborted (Esc): said, nothing cut
+            if not isinstance(e, planner.Cancelled) and not planner.is_abort(e):
                 raise
             _report(obj, translate("PlungeRough", "planning cancelled: nothing is cut until it plans again "
                                    "(the next recompute)"), error=False)

@@ -39,6 +39,11 @@ PROGRAM = "plunge-rough.exe" if os.name == "nt" else "plunge-rough"
 ABORT = getattr(FreeCAD.Base, "FreeCADAbort", KeyboardInterrupt)
 
 
+class Cancelled(Exception):
+    """The plan was cancelled (its progress callback returned False): not bad
+    input, so not a ValueError; the module's own plunge.Cancelled becomes it."""
+
+
 class PlannerFailed(RuntimeError):
     """The planner program crashed, was killed or could not be started: said in
     the report view, nothing is cut, and the operation plans again at the next
@@ -175,7 +180,7 @@ def _run(argv, request, progress=None):
     try:
         while proc.poll() is None:
             if progress is not None and progress(latest[0], latest[1]) is False:
-                raise ValueError("planning cancelled")
+                raise Cancelled("planning cancelled")
             try:
                 proc.wait(timeout=0.1)
             except subprocess.TimeoutExpired:
@@ -256,13 +261,19 @@ class Module:
         self.name = "%s, module %s" % (info["planner"], module.__file__)
 
     def plan(self, data, svg=False, progress=None):
-        return self.module.plan(data, svg=svg, progress=progress)
+        try:
+            return self.module.plan(data, svg=svg, progress=progress)
+        except self.module.Cancelled as e:
+            raise Cancelled(str(e)) from None
 
     def start_hole_tools(self, tools):
         return self.module.start_hole_tools(tools)
 
     def sweep(self, material, tool, moves, progress=None):
-        return self.module.sweep(material, tool, moves, progress)
+        try:
+            return self.module.sweep(material, tool, moves, progress)
+        except self.module.Cancelled as e:
+            raise Cancelled(str(e)) from None
 
 
 def _executable(path):

@@ -1,6 +1,7 @@
 // The Python module `plunge` (docs/cli.md, docs/plan-format.md): conversions and
 // bindings only. plunge::Error becomes ValueError, plunge::InternalError
-// RuntimeError, plunge::Cancelled a ValueError too ("planning cancelled");
+// RuntimeError, plunge::Cancelled plunge.Cancelled (an Exception: a cancel is
+// not bad input);
 // long calls release the GIL.
 #include <pybind11/functional.h>
 #include <pybind11/pybind11.h>
@@ -165,12 +166,12 @@ PYBIND11_MODULE(plunge, m) {
   m.doc() = "Plunge roughing planner: circle packing, gap covering, sequencing and depths";
   py::register_exception<plunge::Error>(m, "PlanError", PyExc_ValueError);
   py::register_exception<plunge::InternalError>(m, "InternalError", PyExc_RuntimeError);
-  py::register_exception<plunge::Cancelled>(m, "Cancelled", PyExc_ValueError);
+  py::register_exception<plunge::Cancelled>(m, "Cancelled", PyExc_Exception);
   m.def("plan", &planDict, py::arg("input"), py::arg("svg") = false, py::arg("progress") = py::none(),
         "Plan a pocket: input and output dicts as in docs/plan-format.md; the result also "
         "holds \"summary\", the plan in one line for people (the CLI's), and with svg=True its pictures: \"svg\" the plan, "
         "\"svg_stock\" the stock left, \"svg_heights\" the stop heights (sculptured floors, or where a holder stopped plunges). progress(fraction, stage) is called "
-        "about every 0.1 s while planning; returning False cancels (ValueError \"planning cancelled\"). "
+        "about every 0.1 s while planning; returning False cancels (plunge.Cancelled, \"planning cancelled\", not a ValueError). "
         "Ctrl+C interrupts planning (KeyboardInterrupt).");
   m.def("start_hole_tools", &startHoleTools, py::arg("tools"),
         "The drill of each tool that does not cut at its centre, as the planner chooses it: "

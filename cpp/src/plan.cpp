@@ -47,7 +47,7 @@ Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const
 // order planPlaced runs them, so the fraction only rises.
 namespace share {
 constexpr double kCheck = 0.0, kFloor = 0.02, kPlace = 0.05, kDepths = 0.75, kFloorStock = 0.8, kWallBand = 0.86,
-                 kOrder = 0.9, kGrow = 0.92, kMotion = 0.95, kMeasure = 0.98;
+                 kOrder = 0.9, kGrow = 0.92, kReach = 0.93, kMotion = 0.95, kMeasure = 0.98;
 }  // namespace share
 
 struct Pocket {
@@ -714,7 +714,7 @@ std::vector<CutDisk> reachWhereHeld(const Stages& job, const HolderClearance& he
     const double r = 0.5 * tools.byId(p.toolId).diameter;
     through.push_back({{p.x, p.y}, r, r, -1});
   }
-  const CoverResult cover = coverRegion(pocket.region, radii, through, coveringOptions(in, Progress()));
+  const CoverResult cover = coverRegion(pocket.region, radii, through, coveringOptions(in, progress));
   const double lowest = in.floor.finalDepth ? *in.floor.finalDepth + in.floorAllowance : -std::numeric_limits<double>::infinity();
   for (size_t k = through.size(); k < cover.disks.size(); ++k) {
     const CoverDisk& n = cover.disks[k];
@@ -872,14 +872,18 @@ struct Posted {
   int levels = 1;
 };
 
-Posted post(const Stages& job, const MotionOptions& motion, const std::vector<CutDisk>& disks) {
-  const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
+// progress: the job's, or the range of a second posting (postReaching).
+Posted post(const Stages& job, const MotionOptions& motion, const std::vector<CutDisk>& disks,
+            const Progress& progress) {
+  const auto& [in, tools, pocket, floor, depths, material, jobProgress, regionArea] = job;
   progress.stage(share::kOrder, "ordering the plunges");
   std::vector<Plunge> ordered = sequence(job, disks);
   if (std::any_of(in.tools.begin(), in.tools.end(), [](const Tool& t) { return std::isfinite(engagementLimit(t)); })) {
     progress.stage(share::kGrow, "growing the cut within the engagement limits");
     HeightField stock = stockOf(in.tools, material, pocket.region);
-    ordered = growWithinLimits(pocket.region, depths, ordered, stock, engagementOptions(job));
+    EngagementOptions eo = engagementOptions(job);
+    eo.progress = progress;
+    ordered = growWithinLimits(pocket.region, depths, ordered, stock, eo);
   }
   Levels split = splitIntoLevels(ordered, motion);
   return {clearHolders(split.plunges, tools, material, mountOf(job)), split.levels};
@@ -888,12 +892,13 @@ Posted post(const Stages& job, const MotionOptions& motion, const std::vector<Cu
 // Posted, and where holders stopped plunges, the tools they did not stop
 // cover what is left (reachWhereHeld), and all is posted again.
 Posted postReaching(const Stages& job, const MotionOptions& motion, std::vector<CutDisk> disks) {
-  Posted posted = post(job, motion, disks);
+  Posted posted = post(job, motion, disks, job.progress);
   if (posted.holders.stops.empty()) return posted;
+  job.progress.stage(share::kReach, "covering where holders stopped plunges");
   const std::vector<CutDisk> reach = reachWhereHeld(job, posted.holders);
   if (reach.empty()) return posted;
   disks.insert(disks.end(), reach.begin(), reach.end());
-  return post(job, motion, disks);
+  return post(job, motion, disks, job.progress.sub(share::kReach, share::kMotion));
 }
 
 // What the final plunges cut and the stock they leave on the floor: measured

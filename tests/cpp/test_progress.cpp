@@ -99,9 +99,9 @@ TEST(Progress, CallbackExceptionPropagates) {
 
 // A plan through every stage (a sculptured floor with the floor-stock step,
 // a section wider than the floor, flute levels, holders that stop plunges so
-// that the plunges are posted twice): each stage is reported, and the
-// fraction only rises.
-TEST(Progress, RisesThroughEveryStage) {
+// that the tools they do not stop cover the rest and the plunges are posted
+// twice).
+static PlanInput throughEveryStage() {
   PlanInput in = test::rectanglePocket();
   in.floor.surface.kind = Floor::Kind::Expression;
   in.floor.surface.expression = "-12 + 2 * sin(x / 9) * cos(y / 7)";
@@ -114,14 +114,34 @@ TEST(Progress, RisesThroughEveryStage) {
   in.tools.push_back({6, 3, 100});
   in.tools.back().stickOut = 40.0;
   in.tools.back().holderDiameter = 10.0;
+  return in;
+}
+
+// Each stage is reported, and the fraction only rises.
+TEST(Progress, RisesThroughEveryStage) {
   Seen seen;
-  const Plan p = plan(in, recorder(seen));
+  const Plan p = plan(throughEveryStage(), recorder(seen));
   ASSERT_FALSE(p.plunges.empty());
   for (size_t i = 1; i < seen.fractions.size(); ++i)
     EXPECT_GE(seen.fractions[i], seen.fractions[i - 1]) << seen.stages[i - 1] << " then " << seen.stages[i];
   for (const char* s : {"plunge depths", "plunges for the floor stock", "the wall band above the floor",
-                        "ordering the plunges", "heights and lead-outs", "measuring the stock left"})
+                        "ordering the plunges", "covering where holders stopped plunges", "heights and lead-outs",
+                        "measuring the stock left"})
     EXPECT_NE(std::find(seen.stages.begin(), seen.stages.end(), s), seen.stages.end()) << s;
+}
+
+// The covering where holders stopped plunges ticks as it works (more reports
+// than its stage's own), and a "no" at one of those ticks stops the plan.
+TEST(Progress, TheReachStepTicksAndCancels) {
+  const std::string reach = "covering where holders stopped plunges";
+  Seen seen;
+  plan(throughEveryStage(), recorder(seen));
+  ASSERT_GE(std::count(seen.stages.begin(), seen.stages.end(), reach), 2);
+  int inStage = 0;
+  Progress progress([&](double, const std::string& s) { return s != reach || ++inStage < 2; },
+                    std::chrono::milliseconds(0));
+  EXPECT_THROW(plan(throughEveryStage(), progress), Cancelled);
+  EXPECT_EQ(inStage, 2);
 }
 
 TEST(Progress, SubRangesMapFractions) {

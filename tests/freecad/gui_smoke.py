@@ -816,7 +816,7 @@ def plunge_mill_bit():
                     raise
                 attempts += 1
                 gc.collect()
-        result["plunge_mill"]["editor_attempts"] = attempts
+        result["plunge_mill"]["editor_retries"] = attempts  # FreeCAD's own failures, taken again
         editor.show()
         result["plunge_mill"]["editor"] = answer["editor"] is None
     step("plunge mill in the tool bit editor")

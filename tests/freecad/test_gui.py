@@ -266,6 +266,10 @@ def test_plunge_mill_from_the_library(result):
     if "editor_attempts" in mill:
         editor_bugs = [k for k in result["report_known_upstream"] if k["bug"] == "editor"]
         assert mill["editor_attempts"] == 1 + len(editor_bugs), result["report_known_upstream"]
+    # FreeCAD 1.1's editor, made again at most twice after its own __init__
+    # met a stale PySide6 wrapper (gui_smoke.plunge_mill_bit).
+    if "editor_retries" in mill:
+        assert mill["editor_retries"] in (0, 1, 2), mill
 
 
 def test_rest_material_from_the_panel(result):

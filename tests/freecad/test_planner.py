@@ -17,7 +17,7 @@ import pytest
 
 import parts
 from conftest import BUILD, build_op
-from freecad_plugin import PlungeRough, planner
+from freecad_plugin import PlungeRough, companions, planner
 
 PROGRAM = os.path.join(BUILD, "cpp", "plunge-rough")
 
@@ -164,6 +164,27 @@ def test_esc_stops_the_program_within_a_second(doc, fresh, monkeypatch):
     assert done - aborted[0][0] < 1.0
     assert procs.procs and all(p.poll() is not None for p in procs.procs)  # no planner left running
     assert op.Summary.startswith("planning cancelled")
+    assert not [c for c in op.Path.Commands if c.Name == "G1"]
+
+
+def test_a_cancel_is_not_bad_input(doc, fresh, monkeypatch):
+    """A progress that says no: the program stops, planner.Cancelled (no
+    ValueError handler takes it), and the operation says it was cancelled, in
+    the report view as a note, not an error."""
+    monkeypatch.setenv(planner.ENVIRONMENT, PROGRAM)
+    procs = Recorder(monkeypatch)
+    job, op, tcs = slow_pocket(doc)
+    calls = []
+    with pytest.raises(planner.Cancelled) as e:
+        planner.planner().plan(companions.plan_data(op)["input"], progress=lambda f, s: calls.append(f) or len(calls) < 2)
+    assert not isinstance(e.value, ValueError) and "planning cancelled" in str(e.value)
+    assert all(p.poll() is not None for p in procs.procs)
+    said = []
+    monkeypatch.setattr(PlungeRough, "_report", lambda obj, text, error=True: said.append((text, error)))
+    monkeypatch.setattr(planner.PlanProgress, "__call__", lambda self, f, s: False)
+    op.touch()
+    doc.recompute()
+    assert said and said[-1][0].startswith("planning cancelled") and said[-1][1] is False, said
     assert not [c for c in op.Path.Commands if c.Name == "G1"]
 
 

@@ -166,8 +166,10 @@ def test_progress_cancels(plunge):
         calls.append(fraction)
         return False
 
-    with pytest.raises(ValueError, match="planning cancelled"):
+    # A cancel is not bad input: plunge.Cancelled, which no ValueError handler takes.
+    with pytest.raises(plunge.Cancelled, match="planning cancelled") as cancelled:
         plunge.plan(load_shape("islands"), progress=stop)
+    assert not isinstance(cancelled.value, ValueError)
     assert len(calls) == 1
     with pytest.raises(ValueError, match="progress: expected a callable"):
         plunge.plan(load_shape("islands"), progress=3)

@@ -16,7 +16,7 @@ namespace plunge {
 
 // Thrown where a cancelled plan stops. Not a plunge::Error: the input is not
 // at fault, and a stage that catches Error to mean "no floor here" lets it
-// pass. Python sees a ValueError ("planning cancelled"), as for every stop.
+// pass. Python sees plunge.Cancelled ("planning cancelled"), not a ValueError.
 class Cancelled : public std::runtime_error {
  public:
   Cancelled() : std::runtime_error("planning cancelled") {}
