@@ -13,8 +13,9 @@ from PySide import QtCore, QtGui
 
 from freecad_plugin import companions, plan_files, PlungeRough, rest, tools, uiforms
 from freecad_plugin.constants import COMMAND, ICON, MENU_TEXT, PANEL, TOOL_TIP
-from freecad_plugin import compat
-from freecad_plugin.compat import PathUtils, gui_modules, gui_util
+from freecad_plugin import compat_gui
+from freecad_plugin.compat import PathUtils
+from freecad_plugin.compat_gui import gui_modules, gui_util
 
 PathOpGui, PathSelection = gui_modules()
 PathGui = gui_util()
@@ -181,7 +182,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
     def setFields(self, obj):
         """Object to UI."""
         for spin in self.spins.values():
-            compat.refresh_spin_box(spin)
+            compat_gui.refresh_spin_box(spin)
         self.form.useCannedCycle.setChecked(obj.UseCannedCycle)
         self.form.peckEnabled.setChecked(obj.PeckEnabled)
         self.form.dwellTime.setValue(obj.DwellTime)

@@ -16,7 +16,7 @@ import tempfile
 import FreeCAD
 
 
-def _first(*names):
+def first_module(*names):
     for name in names:
         try:
             return importlib.import_module(name)
@@ -25,13 +25,13 @@ def _first(*names):
     raise ImportError("none of " + ", ".join(names))
 
 
-PathOp = _first("Path.Op.Base", "PathScripts.PathOp")
-PathUtils = _first("PathScripts.PathUtils")
-PathJob = _first("Path.Main.Job", "PathScripts.PathJob")
-PathToolController = _first("Path.Tool.Controller", "PathScripts.PathToolController")
-PathToolBit = _first("Path.Tool.Bit", "PathScripts.PathToolBit")
-PathFeedRate = _first("Path.Base.FeedRate", "PathFeedRate")
-PathSetupSheet = _first("Path.Base.SetupSheet", "PathScripts.PathSetupSheet")
+PathOp = first_module("Path.Op.Base", "PathScripts.PathOp")
+PathUtils = first_module("PathScripts.PathUtils")
+PathJob = first_module("Path.Main.Job", "PathScripts.PathJob")
+PathToolController = first_module("Path.Tool.Controller", "PathScripts.PathToolController")
+PathToolBit = first_module("Path.Tool.Bit", "PathScripts.PathToolBit")
+PathFeedRate = first_module("Path.Base.FeedRate", "PathFeedRate")
+PathSetupSheet = first_module("Path.Base.SetupSheet", "PathScripts.PathSetupSheet")
 
 
 def version():
@@ -73,44 +73,6 @@ def bit_shape(bit):
     return os.path.splitext(os.path.basename(name))[0].lower()
 
 
-def refresh_spin_box(spin):
-    """A QuantitySpinBox helper shows its property's value again: updateSpinBox()
-    before 1.1, updateWidget() in 1.1 (GUI only)."""
-    update = getattr(spin, "updateSpinBox", None) or getattr(spin, "updateWidget")
-    update()
-
-
-def workbench_name():
-    """The CAM workbench's name: "CAMWorkbench" from 1.0 on, "PathWorkbench" before."""
-    try:
-        import FreeCADGui
-        names = FreeCADGui.listWorkbenches()
-        for name in ("CAMWorkbench", "PathWorkbench"):
-            if name in names:
-                return name
-    except (ImportError, AttributeError):
-        pass
-    return "CAMWorkbench" if version() >= (1, 0) else "PathWorkbench"
-
-
-def gui_modules():
-    """The GUI-side modules (only importable with a GUI)."""
-    op_gui = _first("Path.Op.Gui.Base", "PathScripts.PathOpGui")
-    selection = _first("Path.Op.Gui.Selection", "PathScripts.PathSelection")
-    return op_gui, selection
-
-
-def gui_util():
-    """QuantitySpinBox and friends (GUI only)."""
-    return _first("Path.Base.Gui.Util", "PathScripts.PathGui")
-
-
-def job_gui():
-    """The Job's GUI module, whose Create(base, template, openTaskPanel) is what
-    the Job command runs (GUI only)."""
-    return _first("Path.Main.Gui.Job", "PathScripts.PathJobGui")
-
-
 def voxel_simulator():
     """FreeCAD's voxel (height map) simulator, PathSimulator.PathSim: the engine
     behind the GUI's Path simulator in 0.20 and its legacy simulator in 1.0.
@@ -119,28 +81,9 @@ def voxel_simulator():
     return PathSimulator.PathSim()
 
 
-def simulator_command():
-    """The GUI command of the best simulator this FreeCAD has: 1.0's OpenGL CAM
-    simulator (CAM_SimulatorGL), else the Path simulator (Path_Simulator)."""
-    import FreeCADGui
-    commands = FreeCADGui.listCommands()
-    for name in ("CAM_SimulatorGL", "CAM_Simulator", "Path_Simulator"):
-        if name in commands:
-            return name
-    return None
-
-
-def voxel_simulator_command():
-    """The GUI command of the voxel simulator's panel: Path_Simulator (0.20),
-    CAM_Simulator (1.0, the legacy simulator)."""
-    import FreeCADGui
-    commands = FreeCADGui.listCommands()
-    return next((n for n in ("CAM_Simulator", "Path_Simulator") if n in commands), None)
-
-
 def post_module(name):
     """A post processor script module by its short name ("linuxcnc", "grbl")."""
-    return _first("Path.Post.scripts.%s_post" % name, "PathScripts.post.%s_post" % name)
+    return first_module("Path.Post.scripts.%s_post" % name, "PathScripts.post.%s_post" % name)
 
 
 def post_job(job, name, args):
@@ -164,7 +107,7 @@ def post_job(job, name, args):
             return "\n".join(gcode or "" for _, gcode in post.export())
         finally:
             job.PostProcessorArgs = saved
-    PathPost = _first("PathScripts.PathPost")
+    PathPost = first_module("PathScripts.PathPost")
     module = post_module(name)
     gcode = []
     for objects in PathPost.CommandPathPost().buildPostList(job):

@@ -23,7 +23,6 @@ import shlex
 import signal
 import stat
 import subprocess
-import sys
 import threading
 
 import FreeCAD

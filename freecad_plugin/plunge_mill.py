@@ -69,7 +69,7 @@ def bit_file_name(p):
 
 
 def _property_bag_module():
-    return compat._first("Path.Base.PropertyBag", "PathScripts.PathPropertyBag")
+    return compat.first_module("Path.Base.PropertyBag", "PathScripts.PathPropertyBag")
 
 
 def make_shape(path):

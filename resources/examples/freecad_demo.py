@@ -41,18 +41,18 @@ def main():
     import FreeCADGui
     import example_part
     import plunge
-    from freecad_plugin import PlungeRough, PlungeRoughGui, compat
+    from freecad_plugin import PlungeRough, PlungeRoughGui, compat, compat_gui
 
     os.makedirs(OUT, exist_ok=True)
     # A machinist's unit schema for this session (mm, mm/min): the workbench
     # otherwise warns in a modal box. The user's preference is left alone.
     FreeCAD.Units.setSchema(6)
-    FreeCADGui.activateWorkbench(compat.workbench_name())
+    FreeCADGui.activateWorkbench(compat_gui.workbench_name())
     doc = FreeCAD.newDocument("PlungeExample")
     part = doc.addObject("Part::Feature", "Part")
     part.Shape = example_part.freeform_part(sculptured=True)
     doc.recompute()
-    job = compat.job_gui().Create([part], openTaskPanel=False)
+    job = compat_gui.job_gui().Create([part], openTaskPanel=False)
     # The post the docs name, so that File > Export or the Post command of the
     # saved demo writes what the docs show (a new Job takes the first post listed).
     job.PostProcessor = "linuxcnc"
@@ -112,14 +112,14 @@ def deep_pocket_demo():
     deep_pocket_summary.txt."""
     import FreeCADGui
     import example_part
-    from freecad_plugin import PlungeRough, PlungeRoughGui, compat
+    from freecad_plugin import PlungeRough, PlungeRoughGui, compat, compat_gui
 
     doc = FreeCAD.newDocument("PlungeDeepPocket")
     part = example_part.deep_pocket_part(doc)
     for obj in doc.Objects:
         if obj is not part:
             obj.Visibility = False
-    job = compat.job_gui().Create([part], openTaskPanel=False)
+    job = compat_gui.job_gui().Create([part], openTaskPanel=False)
     job.PostProcessor = "linuxcnc"
     doc.recompute()
     face = example_part.floor_face_name(job.Model.Group[0].Shape, sculptured=False)

@@ -30,6 +30,8 @@ import FreeCAD
 import numpy as np
 import Part
 
+from freecad_plugin import compat
+
 V = FreeCAD.Vector
 TOL = 0.005
 MARGIN = 1.0  # faces farther (by bounding box) than allowance + MARGIN are not measured
@@ -128,17 +130,6 @@ class Tool:
         return Part.makeCompound(ends + [prism])
 
 
-def bit_shape_name(bit):
-    """"endmill", "ballend", "bullnose", ... from FreeCAD's bit (0.20: the shape
-    file's name; 1.1: ShapeType)."""
-    import os
-    kind = str(getattr(bit, "ShapeType", "") or "")
-    if kind and kind.lower() != "custom":
-        return kind.lower()
-    name = str(getattr(bit, "ShapeID", "") or getattr(bit, "BitShape", "") or "")
-    return os.path.splitext(os.path.basename(name))[0].lower()
-
-
 def _mm(value):
     if value is None or isinstance(value, bool):
         return None
@@ -149,7 +140,7 @@ def tool_of(tc):
     """The Tool of a tool controller, from its bit's own parameters."""
     bit = tc.Tool
     radius = _mm(bit.Diameter) / 2
-    shape = bit_shape_name(bit)
+    shape = compat.bit_shape(bit)  # the addon's reading of FreeCAD's bits
     flute = _mm(getattr(bit, "CuttingEdgeHeight", None))
     flute = flute if flute and flute > 0 else None
     if "ball" in shape:

@@ -409,11 +409,11 @@ def show_pictures(page):
 
 def example_document():
     """Phase 1: the shipped example."""
-    from freecad_plugin import PlungeRough, companions, compat, plan_files
+    from freecad_plugin import PlungeRough, companions, plan_files, compat_gui
     doc = FreeCAD.openDocument(os.environ["PLUNGE_EXAMPLE_DOC"])
     FreeCADGui.ActiveDocument.ActiveView.viewIsometric()
-    FreeCADGui.activateWorkbench(compat.workbench_name())
-    result["simulator"] = compat.simulator_command()  # its commands exist once it is active
+    FreeCADGui.activateWorkbench(compat_gui.workbench_name())
+    result["simulator"] = compat_gui.simulator_command()  # its commands exist once it is active
     step("example opened")
     clear_report_view()  # the pictures show what the user does from here (FreeCAD 0.20's opening noise read)
     job = doc.getObject("Job")
@@ -455,7 +455,7 @@ def example_document():
     clear_report_view()  # the simulator's picture: its own lines, not the cancel and kill tests'
 
     # The voxel simulator's own panel, fast-forwarded to the end.
-    name = compat.voxel_simulator_command()
+    name = compat_gui.voxel_simulator_command()
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.runCommand(name)
     mw = FreeCADGui.getMainWindow()
@@ -490,7 +490,7 @@ def example_document():
     wait(1)
     step("example: simulated with " + name)
 
-    if compat.simulator_command() == "CAM_SimulatorGL":
+    if compat_gui.simulator_command() == "CAM_SimulatorGL":
         play_gl_simulator()
     FreeCAD.closeDocument(doc.Name)
     wait(1)
@@ -551,7 +551,7 @@ def play_gl_simulator():
 def new_job():
     """Phase 2: a new Job, as a user makes one."""
     import example_part
-    from freecad_plugin import PlungeRough, companions, compat
+    from freecad_plugin import PlungeRough, companions, compat, compat_gui
     doc = FreeCAD.newDocument("PlungeNew")
     part = doc.addObject("Part::Feature", "Part")
     part.Shape = example_part.freeform_part(True)
@@ -562,7 +562,7 @@ def new_job():
     result["enabled_without_job"] = action.isEnabled() if action else None
     step("command greyed without a Job")
 
-    job = compat.job_gui().Create([part], openTaskPanel=False)
+    job = compat_gui.job_gui().Create([part], openTaskPanel=False)
     doc.recompute()
     FreeCADGui.ActiveDocument.ActiveView.fitAll()
     clear_report_view()  # the screenshots below show this Job's lines only
@@ -728,12 +728,12 @@ def plunge_mill_bit():
     """Phase 4: the plunge-mill bit that installing the addon put in the tool
     library, added in a new Job's panel as any bit (before 1.1 its file, in
     1.1 from the library dialog), then opened in FreeCAD's tool bit editor."""
-    from freecad_plugin import compat, plunge_mill, tools
+    from freecad_plugin import compat, plunge_mill, tools, compat_gui
     doc = FreeCAD.newDocument("PlungeMill")
     block = doc.addObject("Part::Box", "Block")
     block.Length, block.Width, block.Height = 120, 80, 40
     doc.recompute()
-    job = compat.job_gui().Create([block], openTaskPanel=False)
+    job = compat_gui.job_gui().Create([block], openTaskPanel=False)
     doc.recompute()
     FreeCADGui.ActiveDocument.setEdit(job.Name)
     wait(1)
@@ -870,9 +870,9 @@ def main():
     # modal box on activation.
     FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Units").SetInt("UserSchema", 6)
     FreeCAD.Units.setSchema(6)
-    from freecad_plugin import compat
+    from freecad_plugin import compat, compat_gui
     result["addon"] = os.path.dirname(os.path.dirname(os.path.abspath(compat.__file__)))
-    result["workbench"] = compat.workbench_name()
+    result["workbench"] = compat_gui.workbench_name()
     # FreeCAD draws check marks and icons from SVG: without Qt's SVG image
     # plugin every ticked box looks unticked (a Qt 6 set-up without it).
     result["svg_images"] = "svg" in [bytes(f).decode() for f in QtGui.QImageReader.supportedImageFormats()]
