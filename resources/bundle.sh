@@ -163,7 +163,9 @@ rm -rf "$HEADERS"
 mkdir -p "$HEADERS"
 for h in boost CGAL nlohmann CLI; do ln -s "/usr/include/$h" "$HEADERS/$h"; done
 ln -s /usr/include/eigen3/Eigen "$HEADERS/Eigen"
-cp "$CLIPPER/cpp/clipper.hpp" "$MUPARSER"/include/*.h "$HEADERS/"
+# Their own dates kept: a copy made anew each run would make every file that
+# includes them compile again.
+cp -p "$CLIPPER/cpp/clipper.hpp" "$MUPARSER"/include/*.h "$HEADERS/"
 
 # Clipper and muParser as static libraries, for the target, on every core;
 # built again when the sources, the compiler or the flags change (STAMP).

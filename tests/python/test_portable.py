@@ -9,7 +9,8 @@ macos-arm64,macos-x86_64}.zip and dist/PlungeRough-VERSION.zip
 (`sh resources/bundle.sh all` makes them all). Where one is missing, or wine
 or qemu-aarch64-static is, its cases are skipped, unless
 PLUNGE_TEST_PORTABLE=1 (CI's run, tests/portable/run.sh), which asks for all
-of them.
+of them; PLUNGE_TEST_PORTABLE=0 (CI's native test command, beside that run)
+skips them all: the portable stage runs them once.
 
 Golden inputs: every test shape and floor kind of test_program.py, and the
 FreeCAD demo's floor as the addon meshes it (demo_mesh_input.py)."""
@@ -35,6 +36,8 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 DIST = os.path.join(ROOT, "dist")
 REQUIRED = os.environ.get("PLUNGE_TEST_PORTABLE") == "1"
 WINE = shutil.which("wine")
+pytestmark = pytest.mark.skipif(os.environ.get("PLUNGE_TEST_PORTABLE") == "0",
+                                reason="PLUNGE_TEST_PORTABLE=0: tests/portable/run.sh runs these")
 QEMU = shutil.which("qemu-aarch64-static")
 sys.path.insert(0, os.path.join(ROOT, "resources"))
 import macho_check  # noqa: E402
