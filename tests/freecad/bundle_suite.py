@@ -31,10 +31,17 @@ import shutil
 import subprocess
 import sys
 import threading
+import time
 import zipfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 bundle = os.environ.get("PLUNGE_TEST_BUNDLE", "")
+# PLUNGE_TEST_BUNDLE_WAIT=SECONDS: the zip may still be on its way (CI's
+# chroots start their tests while the host builds it; tests/fresh/run.sh
+# copies it in when it is there, or writes BUNDLE.failed when the host gave up).
+deadline = time.monotonic() + float(os.environ.get("PLUNGE_TEST_BUNDLE_WAIT", "0") or 0)
+while bundle and not os.path.isfile(bundle) and not os.path.exists(bundle + ".failed") and time.monotonic() < deadline:
+    time.sleep(5)
 if not os.path.isfile(bundle):
     sys.exit("bundle_suite: PLUNGE_TEST_BUNDLE names no bundle (%r): sh resources/bundle.sh linux makes "
              "dist/PlungeRough-linux-x86_64.zip" % bundle)

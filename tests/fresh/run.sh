@@ -25,6 +25,7 @@ ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 CACHE=${PLUNGE_FRESH_CACHE:-/var/cache/plungerough-fresh}
 BASE=${PLUNGE_FRESH_ROOT:-/var/tmp/plungerough-fresh}
 DIR=$BASE/$SUITE
+COPIER=  # the background copy of the bundle under test (bundle_in)
 say() { echo "fresh[$SUITE]: $*"; }
 die() { echo "fresh[$SUITE]: $*" >&2; exit 1; }
 
@@ -43,6 +44,7 @@ TEST_CMD=$(printf '%s\n' "$COMMANDS" | sed -n 2p)
 mounted_under() { awk -v d="$1" '$2 == d || index($2, d "/") == 1 {print $2}' /proc/mounts; }
 
 release() {
+  [ -z "$COPIER" ] || kill "$COPIER" 2>/dev/null || true
   [ -d "$DIR" ] || return 0
   # Processes left in the chroot (Xvfb, FreeCAD) hold its mounts.
   for p in /proc/[0-9]*; do
@@ -96,23 +98,36 @@ else
   say "cloned $ROOT at $(git -C "$ROOT" rev-parse --short HEAD)"
 fi
 
-# The Linux bundle under test: PLUNGE_TEST_BUNDLE on the host (CI builds it
-# once, on Debian 12, the way users get it, and every FreeCAD version tests
-# that one), copied in when the test command starts; the host may still be
-# building it then (CI runs both side by side): waited for up to 30 minutes,
-# or until the host gives up on it (PLUNGE_TEST_BUNDLE.failed).
-# Without it, the test command builds this checkout's.
+# The bundle under test: PLUNGE_TEST_BUNDLE on the host (CI builds it once,
+# on Debian 12, the way users get it, and every FreeCAD version tests that
+# one). The host may still be building it when the test command starts (CI
+# runs both side by side): it is copied in as soon as it is there (a copy
+# under another name, then renamed), and the bundle's suite, which runs late
+# in the test command, waits for it (PLUNGE_TEST_BUNDLE_WAIT), up to 40
+# minutes in all, or until the host gives up on it (PLUNGE_TEST_BUNDLE.failed,
+# passed on as the same name in the chroot). Without it, the test command
+# builds this checkout's.
 bundle_in() {
   [ -n "${PLUNGE_TEST_BUNDLE:-}" ] || return 0
-  waited=0
-  while [ ! -s "$PLUNGE_TEST_BUNDLE" ] && [ ! -e "$PLUNGE_TEST_BUNDLE.failed" ] && [ $waited -lt 1800 ]; do
-    sleep 5
-    waited=$((waited + 5))
-  done
-  [ -s "$PLUNGE_TEST_BUNDLE" ] || die "no bundle at $PLUNGE_TEST_BUNDLE"
-  cp "$PLUNGE_TEST_BUNDLE" "$DIR/root/"
-  BUNDLE_ENV="PLUNGE_TEST_BUNDLE=/root/$(basename "$PLUNGE_TEST_BUNDLE")"
-  say "testing the bundle $PLUNGE_TEST_BUNDLE"
+  name=$(basename "$PLUNGE_TEST_BUNDLE")
+  rm -f "$DIR/root/$name" "$DIR/root/$name.failed"
+  (
+    waited=0
+    while [ ! -s "$PLUNGE_TEST_BUNDLE" ] && [ ! -e "$PLUNGE_TEST_BUNDLE.failed" ] && [ $waited -lt 2400 ]; do
+      sleep 5
+      waited=$((waited + 5))
+    done
+    if [ -s "$PLUNGE_TEST_BUNDLE" ]; then
+      cp "$PLUNGE_TEST_BUNDLE" "$DIR/root/$name.part" && mv "$DIR/root/$name.part" "$DIR/root/$name"
+      say "the bundle $PLUNGE_TEST_BUNDLE is in, after $waited s"
+    else
+      touch "$DIR/root/$name.failed"
+      say "no bundle at $PLUNGE_TEST_BUNDLE after $waited s"
+    fi
+  ) &
+  COPIER=$!
+  BUNDLE_ENV="PLUNGE_TEST_BUNDLE=/root/$name PLUNGE_TEST_BUNDLE_WAIT=2400"
+  say "testing the bundle $PLUNGE_TEST_BUNDLE (copied in when it is there)"
 }
 BUNDLE_ENV=
 
