@@ -11,7 +11,7 @@ import FreeCAD
 import FreeCADGui
 from PySide import QtCore, QtGui
 
-from freecad_plugin import companions, plan_files, PlungeRough, rest, tools, uiforms
+from freecad_plugin import companions, plan_files, PlungeRough, rest, rest_gui, tools, uiforms
 from freecad_plugin.constants import COMMAND, ICON, MENU_TEXT, PANEL, TOOL_TIP
 from freecad_plugin import compat_gui
 from freecad_plugin.compat import PathUtils
@@ -123,7 +123,7 @@ class TaskPanelOpPage(PathOpGui.TaskPanelPage):
 
     def showRestSolid(self):
         """The operation's rest material feature (made once, then shown)."""
-        feature = rest.rest_solid_of(self.obj) or rest.make_rest_solid(self.obj)
+        feature = rest.rest_solid_of(self.obj) or rest_gui.make_and_show(self.obj)
         if feature.ViewObject is not None:
             feature.ViewObject.Visibility = True
         return feature

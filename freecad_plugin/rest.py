@@ -6,14 +6,13 @@ what every enabled operation before this one in the Job cuts: which ones, and
 over which cells, is said here; their Path commands are replayed by replay.py.
 Each cell holds the material at its centre: a rest narrower than a cell may go
 unseen (RestResolution). Also the "rest material" document feature (the stock
-left after an operation, as a solid) and its view provider.
+left after an operation, as a solid); its view provider is rest_gui.py's.
 
 App side: never imports GUI code.
 """
 import math
 
 import FreeCAD
-from PySide import QtCore
 from PySide.QtCore import QT_TRANSLATE_NOOP
 
 from freecad_plugin import companions, compat, replay, tools
@@ -215,69 +214,6 @@ class RestSolid:
         return None
 
 
-STOCK_COLOUR = (0.85, 0.55, 0.25)  # the rest material's top, apart from the part's grey
-DEEPEST_COLOUR = (0.30, 0.45, 0.75)  # its lowest top
-
-
-def depth_colours(shape):
-    """A colour per face of a rest solid, by the height of the top of its box:
-    stock colour at the highest, blue at the lowest (a face's top is its
-    box's, but for the bottoms, shown as the lowest). FreeCAD's headlight
-    shades the tops and sides of boxes alike in its isometric view: without
-    colours the rest reads as one flat patch there."""
-    boxes = [f.BoundBox for f in shape.Faces]
-    sides = [b.ZMax for b in boxes if b.ZLength > 1e-6]
-    if not sides:
-        return [STOCK_COLOUR] * len(boxes)
-    high, low = max(sides), min(sides)
-    span = max(high - low, 1e-9)
-
-    def mix(z):  # below the lowest side's top (the bottoms) as the lowest
-        s = min(1.0, max(0.0, (high - z) / span))
-        return tuple(a + (b - a) * s for a, b in zip(STOCK_COLOUR, DEEPEST_COLOUR))
-    return [mix(b.ZMax) for b in boxes]
-
-
-class ViewProviderRest:
-    """The rest material's view provider: the shape shown as a Part's,
-    coloured by height (depth_colours; a view provider without a proxy shows
-    nothing). Plain Python: App code may make it without importing GUI code."""
-
-    def __init__(self, vobj):
-        vobj.Proxy = self
-
-    def attach(self, vobj):
-        self.Object = vobj.Object
-
-    def updateData(self, obj, prop):
-        # FreeCAD calls this before it rebuilds the shape's scene, and face
-        # colours take only once the scene has the faces: so, just after.
-        if prop == "Shape":
-            QtCore.QTimer.singleShot(0, lambda: self.colour(obj))
-
-    @staticmethod
-    def colour(obj):
-        try:
-            if obj.ViewObject is not None and not obj.Shape.isNull():
-                obj.ViewObject.DiffuseColor = depth_colours(obj.Shape)
-        except ReferenceError:  # deleted before the scene was drawn
-            pass
-
-    def getDisplayModes(self, vobj):
-        return ["Shaded", "Flat Lines", "Wireframe"]
-
-    def getDefaultDisplayMode(self):
-        return "Shaded"  # the edges of thousands of boxes would hide the steps in black
-
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
-    dumps, loads = __getstate__, __setstate__
-
-
 def rest_solid_of(op):
     """The operation's rest material feature, if it has one."""
     for o in op.InList:
@@ -286,13 +222,14 @@ def rest_solid_of(op):
     return None
 
 
-def make_rest_solid(op):
-    """The rest material feature of a Plunge Rough operation, recomputed."""
+def make_rest_solid(op, view=None):
+    """The rest material feature of a Plunge Rough operation, recomputed; the
+    GUI gives its view provider as view(obj), before the recompute
+    (rest_gui.make_and_show)."""
     obj = op.Document.addObject("Part::FeaturePython", "PlungeRoughRest")
     RestSolid(obj, op)
-    if obj.ViewObject is not None:
-        ViewProviderRest(obj.ViewObject)
-        obj.ViewObject.ShapeColor = STOCK_COLOUR
+    if view is not None and obj.ViewObject is not None:
+        view(obj)
     obj.Label = "%s rest" % op.Label
     op.Document.recompute()
     return obj

@@ -9,7 +9,7 @@ import re
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 PLUGIN = os.path.join(ROOT, "freecad_plugin")
-GUI = {"command", "compat_gui", "PlungeRoughGui", "uiforms"}
+GUI = {"command", "compat_gui", "PlungeRoughGui", "rest_gui", "uiforms"}
 MODULES = sorted(f[:-3] for f in os.listdir(PLUGIN) if f.endswith(".py") and f != "__init__.py")
 
 
