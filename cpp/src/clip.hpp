@@ -3,8 +3,8 @@
 #include <clipper.hpp>
 #include <cmath>
 
+#include "detail.hpp"
 #include "plunge/geometry.hpp"
-#include "polygon.hpp"
 
 namespace plunge::clip {
 

@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "clip.hpp"
+#include "polygon.hpp"
 #include "detail.hpp"
 #include "plunge/error.hpp"
 

@@ -14,6 +14,16 @@
 
 #include "plunge/geometry.hpp"
 
+namespace plunge::poly {
+
+// Clipper works on integers: 1e5 units per millimetre (10 nm), exact 64-bit
+// arithmetic for pockets up to 10 m.
+constexpr double kScale = 1e5;
+// Chord error used when arcs (offsets, disks) become polygons.
+constexpr double kArcTolerance = 0.002;
+
+}  // namespace plunge::poly
+
 namespace plunge::detail {
 
 namespace bg = boost::geometry;

@@ -24,25 +24,13 @@
 #include "depth.hpp"
 #include "growth_paths.hpp"
 #include "heightfield.hpp"
+#include "options.hpp"
 #include "plunge/progress.hpp"
 #include "region.hpp"
 #include "plunge/tools.hpp"
 #include "plunge/types.hpp"
 
 namespace plunge {
-
-// What the growth needs of the job (PlanInput's fields of the same names).
-struct EngagementOptions {
-  ToolTable tools;
-  double radialAllowance = 0.0;
-  double floorAllowance = 0.0;
-  Material material{std::nullopt, 0.0};  // what the operations before left, up to top_z
-  double maxWallStock = 0.0;   // the wall band the contour keeps (stock.hpp)
-  double maxFloorStock = 0.0;  // over sculptured floors, what the growth leaves to the finisher
-  std::optional<Vec2> start;   // where the machine starts
-  GrowthPattern pattern = GrowthPattern::Auto;
-  Progress progress;
-};
 
 // The plan's plunges (tools largest first, each tool's in tour order) rebuilt so
 // that every tool keeps its engagement limit and core over removed material.

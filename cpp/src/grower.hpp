@@ -5,7 +5,10 @@
 #include <vector>
 
 #include "cuts.hpp"
-#include "engagement.hpp"
+#include "depth.hpp"
+#include "heightfield.hpp"
+#include "options.hpp"
+#include "region.hpp"
 #include "targets.hpp"
 
 namespace plunge {

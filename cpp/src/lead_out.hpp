@@ -5,7 +5,7 @@
 
 #include "depth.hpp"
 #include "heightfield.hpp"
-#include "motion.hpp"
+#include "options.hpp"
 #include "region.hpp"
 #include "touched.hpp"
 

@@ -21,24 +21,13 @@
 #include "broken.hpp"
 #include "depth.hpp"
 #include "heightfield.hpp"
+#include "options.hpp"
 #include "plunge/progress.hpp"
 #include "region.hpp"
 #include "plunge/tools.hpp"
 #include "plunge/types.hpp"
 
 namespace plunge {
-
-// What the machine's moves need of the job (PlanInput's fields of the same names).
-struct MotionOptions {
-  ToolTable tools;  // largest first
-  Material material{std::nullopt, 0.0};  // what the operations before left, up to top_z
-  double safeZ = 5.0;
-  double radialAllowance = 0.0;
-  double floorAllowance = 0.0;
-  double maxWallStock = 0.0;  // the wall band the covering may leave (rapids go around it)
-  MotionSettings settings;  // lead-outs, heights, pecks, the time model (PlanInput::motion)
-  Progress progress;  // ticked per plunge (it may cancel)
-};
 
 // The plunges of tools with a flute length split into levels (same positions,
 // stepping down), in their new order, and the most levels any tool needs.

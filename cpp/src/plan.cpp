@@ -759,32 +759,33 @@ HolderSettings mountOf(const Stages& job) {
 }
 
 // The engagement's and the motion's options: each filled here only, from the job.
-EngagementOptions engagementOptions(const Stages& job) {
+// What the growth and the moves read of the job, filled once for both.
+JobOptions jobOptions(const Stages& job) {
   const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
-  EngagementOptions o;
+  JobOptions o;
   o.tools = tools;
   o.material = material;
   o.radialAllowance = in.radialAllowance;
   o.floorAllowance = in.floorAllowance;
   o.maxWallStock = in.covering.maxWallStock;
-  o.maxFloorStock = in.floor.maxFloorStock;
-  o.start = in.motion.start;
-  o.pattern = in.engagement.pattern;
   o.progress = progress;
   return o;
 }
 
+EngagementOptions engagementOptions(const Stages& job) {
+  EngagementOptions o;
+  static_cast<JobOptions&>(o) = jobOptions(job);
+  o.maxFloorStock = job.in.floor.maxFloorStock;
+  o.start = job.in.motion.start;
+  o.pattern = job.in.engagement.pattern;
+  return o;
+}
+
 MotionOptions motionOptions(const Stages& job) {
-  const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
   MotionOptions o;
-  o.tools = tools;
-  o.material = material;
-  o.safeZ = in.safeZ;
-  o.radialAllowance = in.radialAllowance;
-  o.floorAllowance = in.floorAllowance;
-  o.maxWallStock = in.covering.maxWallStock;
-  o.settings = in.motion;
-  o.progress = progress;
+  static_cast<JobOptions&>(o) = jobOptions(job);
+  o.safeZ = job.in.safeZ;
+  o.settings = job.in.motion;
   return o;
 }
 

@@ -4,16 +4,13 @@
 #pragma once
 #include <vector>
 
+#include "detail.hpp"
 #include "plunge/geometry.hpp"
 #include "region.hpp"
 
 namespace plunge::poly {
 
-// Clipper works on integers: 1e5 units per millimetre (10 nm), exact 64-bit
-// arithmetic for pockets up to 10 m.
-constexpr double kScale = 1e5;
-// Chord error used when arcs (offsets, disks) become polygons.
-constexpr double kArcTolerance = 0.002;
+// kScale and kArcTolerance: detail.hpp (clip.hpp, the layer below, uses them too).
 
 double area(const Polygons& p);
 // Round-joined offset; negative delta shrinks.

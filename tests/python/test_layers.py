@@ -3,6 +3,8 @@ file of its own layer or below, and every file is in the drawing."""
 import os
 import re
 
+import pytest
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CPP = os.path.join(ROOT, "cpp")
 
@@ -75,7 +77,26 @@ def test_the_check_sees_a_layer_above(tmp_path):
     header.write_text('#pragma once\n#include "plunge/geometry.hpp"\n#include "plunge/plan.hpp"\n')
     saved, CPP = CPP, str(tmp_path)
     try:
-        assert [w.endswith("includes plan (layer 6)") for w in violations([str(header)], layers())] == [True]
+        assert [w.endswith("includes plan (layer 9)") for w in violations([str(header)], layers())] == [True]
+    finally:
+        CPP = saved
+
+
+@pytest.mark.parametrize("lower, upper", [("grower", "engagement"), ("lead_out", "motion"), ("clip", "polygon")])
+def test_the_check_sees_a_callee_including_its_caller(tmp_path, lower, upper):
+    """Within the real plunge mills and the polygons, what a module calls sits
+    a layer below it: the callee including its caller's header (where options
+    structs once lived) is caught."""
+    global CPP
+    header = tmp_path / "src" / (lower + ".hpp")
+    header.parent.mkdir(parents=True)
+    header.write_text('#pragma once\n#include "%s.hpp"\n' % upper)
+    saved, CPP = CPP, str(tmp_path)
+    try:
+        drawn = layers()
+        assert drawn[lower] < drawn[upper]
+        assert [w.endswith("includes %s (layer %d)" % (upper, drawn[upper]))
+                for w in violations([str(header)], drawn)] == [True]
     finally:
         CPP = saved
 
