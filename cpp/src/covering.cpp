@@ -172,8 +172,8 @@ Polygons accessibleRegion(const Region& region, double minRadius, double allowan
   return clip::toPolygons(clip::offset(eroded, minRadius));
 }
 
-Polygons coreRegion(const Region& region, const Polygons& accessible, double allowance, double band) {
-  const clip::Paths inner = clip::offset(clip::toPaths(region.polygons()), -(allowance + band));
+Polygons coreRegion(const Region& region, const Polygons& accessible, double allowance, double maxWallStock) {
+  const clip::Paths inner = clip::offset(clip::toPaths(region.polygons()), -(allowance + maxWallStock));
   if (inner.empty()) return {};
   // Not the last hundredth of a millimetre of the accessible outline: there the
   // outline's polygon and the disks' polygons differ by their chord errors, in
@@ -439,7 +439,7 @@ class Coverer {
     rMax_ = radii[sorted_.back()];
     // With a band the core is covered whole: only slivers of the polygon
     // approximation (under 0.01 mm^2 measured) may stay.
-    core_ = opt.wallStock > 0.0;
+    core_ = opt.maxWallStock > 0.0;
     crumb_ = core_ ? kCoreCrumb : kCrumbShare * rMin_ * rMin_;
     pieces_ = MaterialPieces(rMin_, rMax_, core_, crumb_);
   }
@@ -474,12 +474,12 @@ class Coverer {
     Polygons core;
     clip::Paths toCover = accessible_;
     if (core_) {
-      core = coreRegion(region_, acc, opt_.allowance, opt_.wallStock);
+      core = coreRegion(region_, acc, opt_.allowance, opt_.maxWallStock);
       result_.coreArea = poly::area(core);
       // Planned with a slightly wider core: the slivers the greedy leaves (under
       // its crumb) then lie inside the band, and so do the scallops' tips.
-      const double margin = std::min(kBandMargin, 0.1 * opt_.wallStock);
-      toCover = clip::toPaths(coreRegion(region_, acc, opt_.allowance, opt_.wallStock - margin));
+      const double margin = std::min(kBandMargin, 0.1 * opt_.maxWallStock);
+      toCover = clip::toPaths(coreRegion(region_, acc, opt_.allowance, opt_.maxWallStock - margin));
     }
     // With a band, disks are inscribed polygons in planning too: what the
     // planner counts as cut is cut, so no sliver of the core survives the real disks.
@@ -766,7 +766,7 @@ class Coverer {
   std::vector<int> sorted_;  // tool indices by increasing radius
   mutable std::unordered_map<Placement, bool, PlacementHash> fitsMemo_;
   double rMin_ = 0, rMax_ = 0, crumb_ = 0;
-  bool core_ = false;  // a wall band: cover the core whole (CoveringOptions::wallStock)
+  bool core_ = false;  // a wall band: cover the core whole (CoveringOptions::maxWallStock)
   clip::Paths accessible_;
   MaterialPieces pieces_{0.0, 0.0, false, 0.0};
   int seq_ = 0;
@@ -781,7 +781,7 @@ CoverResult coverRegion(const Region& region, const std::vector<double>& radii,
   if (radii.empty()) throw Error("no tools given");
   if (!(options.minCoverage > 0.0 && options.minCoverage <= 1.0))
     throw Error("minimum coverage must be in (0, 1]");
-  if (!(options.wallStock >= 0.0) || !std::isfinite(options.wallStock)) throw Error("wall band must be >= 0");
+  if (!(options.maxWallStock >= 0.0) || !std::isfinite(options.maxWallStock)) throw Error("wall band must be >= 0");
   Coverer c(region, radii, options);
   return c.run(packed);
 }

@@ -36,10 +36,10 @@ struct CoveringOptions {
   // accessible region is covered (free-standing pins are always covered).
   double minCoverage = CoveringSettings{}.minCoverage;  // the input's default, written once (types.hpp)
   // The wall band (mm beyond the allowance, "max_wall_stock"): when > 0, every
-  // point of the accessible region farther than allowance + wallStock from the
+  // point of the accessible region farther than allowance + maxWallStock from the
   // walls is covered (the core), material inside the band may stay, and
   // minCoverage is not used. 0: cover down to minCoverage.
-  double wallStock = 0.0;
+  double maxWallStock = 0.0;
   // With a wall band: measure what the disks leave (CoverResult's uncovered,
   // coveredArea, coreUncovered). A plan that measures its final plunges
   // anyway skips it.
@@ -52,8 +52,8 @@ Polygons allowedRegion(const Region& region, double allowance);
 // The part of it that the smallest tool can reach: opening by its radius.
 Polygons accessibleRegion(const Region& region, double minRadius, double allowance);
 // What must be cut with a wall band: the accessible region minus the band
-// (points farther than allowance + band from every wall and island).
-Polygons coreRegion(const Region& region, const Polygons& accessible, double allowance, double band);
+// (points farther than allowance + maxWallStock from every wall and island).
+Polygons coreRegion(const Region& region, const Polygons& accessible, double allowance, double maxWallStock);
 // The part of `area` outside every disk (polygon booleans; disks become
 // inscribed polygons, so what is uncovered is never underestimated).
 Polygons uncoveredRegion(const Polygons& area, const std::vector<Circle>& disks);

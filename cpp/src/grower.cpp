@@ -218,7 +218,7 @@ void Grower::shortenTour(size_t begin) {
 // a little above the planned ones in places. What they leave within the
 // floor stock limit (max_floor_stock, kFloorBand of it) is the floor's
 // stock, as in the floor-stock step (stock.hpp), not a target: a plunge for it
-// would cut a sliver of a few tenths (the planned rest plunges, where it is
+// would cut a sliver of a few tenths (the planned floor-stock plunges, where it is
 // thicker, stay targets). A target point is done as soon as it is cut that
 // low, so a path position that would only deepen such points is not made.
 void Grower::keepFloorStock(Targets& targets) const {

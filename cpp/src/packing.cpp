@@ -96,7 +96,7 @@ class Packer {
     rho_ = radius * opt_.contactRatio;
     // A wall-row pass (a band): disks of this phase meet at the band's chord,
     // or at the usual contact where that is closer (a band deep into the disk).
-    row_ = opt_.wallBand > 0.0 ? std::min(wallRowSpacing(radius, opt_.wallBand), 2 * rho_) : 0.0;
+    row_ = opt_.maxWallStock > 0.0 ? std::min(wallRowSpacing(radius, opt_.maxWallStock), 2 * rho_) : 0.0;
     proto_ = {{}, r_, rho_, tool_};
     cands_.clear();
     candIndex_.clear();
@@ -347,13 +347,13 @@ class Packer {
 }  // namespace
 
 std::vector<PackedDisk> packWithWallBand(const Region& region, double radius, const PackingOptions& options) {
-  if (!(options.wallBand > 0.0)) return packMaxHoleDegree(region, {radius}, options);
+  if (!(options.maxWallStock > 0.0)) return packMaxHoleDegree(region, {radius}, options);
   // The rows: a pass that only places disks touching the walls, at the band's chord.
   std::vector<PackedDisk> disks = packMaxHoleDegree(region, {radius}, options);
   // Inside them, the plain packing kept off the walls by the inset.
   PackingOptions inner = options;
-  inner.wallBand = 0.0;
-  inner.allowance += wallRowInset(radius, radius * options.contactRatio, options.wallBand);
+  inner.maxWallStock = 0.0;
+  inner.allowance += wallRowInset(radius, radius * options.contactRatio, options.maxWallStock);
   for (const PackedDisk& d : packMaxHoleDegree(region, {radius}, inner)) disks.push_back(d);
   return disks;
 }

@@ -36,7 +36,7 @@ struct PackingOptions {
   // > 0, packMaxHoleDegree places wall rows only: disks touching the walls, those
   // of one tool meeting at the band's chord 2 sqrt(2 r b - b^2), so that their
   // scallops stay inside the band (packWithWallBand adds the inside).
-  double wallBand = 0.0;
+  double maxWallStock = 0.0;
   Progress progress;  // checked per placement: a cancelled plan stops here
 };
 

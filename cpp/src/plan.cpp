@@ -41,7 +41,7 @@ namespace plunge {
 
 namespace {
 
-Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const Progress& progress);
+Plan planPlaced(const PlanInput& given, std::optional<CoverResult> positions, const Progress& progress);
 
 // Where each stage of a plan starts on the progress bar: one table, in the
 // order planPlaced runs them, so the fraction only rises.
@@ -92,7 +92,7 @@ CoveringOptions coveringOptions(const PlanInput& in, const Progress& progress) {
   CoveringOptions co;
   co.allowance = in.radialAllowance;
   co.minCoverage = in.covering.minCoverage;
-  co.wallStock = in.covering.maxWallStock;
+  co.maxWallStock = in.covering.maxWallStock;
   co.measureCore = false;
   co.progress = progress;
   return co;
@@ -170,7 +170,7 @@ CoverResult placePlunges(const PlanInput& in, const Region& region, const std::v
     po.allowance = in.radialAllowance;
     po.contactRatio = in.packing.contactRatio;
     po.order = order;
-    po.wallBand = in.covering.maxWallStock;
+    po.maxWallStock = in.covering.maxWallStock;
     po.progress = progress;
     const CoveringOptions co = coveringOptions(in, progress);
     if (in.covering.maxWallStock <= 0.0) return coverRegion(region, radii, packMaxHoleDegree(region, radii, po), co);
@@ -337,7 +337,7 @@ Said floorStockSaid(const PlanInput& in, const FloorStockMeasure& m, const std::
 }
 
 // What the final plunges cut, as a covering's result: the stats describe the
-// plan as made (rest plunges, growth within the limits and levels included).
+// plan as made (floor-stock plunges, growth within the limits and levels included).
 CoverResult coverOf(const std::vector<Plunge>& plunges, const Polygons& accessible, const Polygons& core) {
   CoverResult c;
   std::vector<Circle> circles;
@@ -638,12 +638,12 @@ std::vector<CutDisk> wallBandAbove(const Stages& job, std::vector<CutDisk> disks
 // Plunge positions and their stop heights: packing and covering (or the grid),
 // the depth of each (4.4), the floor-stock step, then no plunge below final_depth
 // (held: whether that raised any plunge above the floor).
-// (placed: the positions when the tool choice has placed them already.)
-Placed placeAndDepth(const Stages& job, std::optional<CoverResult> placed) {
+// (positions: where the tool choice has placed the plunges already.)
+Placed placeAndDepth(const Stages& job, std::optional<CoverResult> positions) {
   const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
   progress.stage(share::kPlace, "packing and covering");
   const CoverResult cover =
-      placed ? std::move(*placed) : placePlunges(in, pocket.region, radiiOf(in.tools), pocket.core, progress);
+      positions ? std::move(*positions) : placePlunges(in, pocket.region, radiiOf(in.tools), pocket.core, progress);
   progress.stage(share::kDepths, "plunge depths");
   Placed out{depthsOf(in, cover, depths, progress)};
   const FloorStockResult floorStock = floorStockStep(job, out.disks);
@@ -687,7 +687,7 @@ AirSplit dropAirPlunges(const Stages& job, const std::vector<CutDisk>& disks) {
 // The tool that reaches (holder.hpp): the area the stopped plunges were to
 // cut, covered by the tools no holder stopped anywhere, as the covering covers
 // gaps (every plunge that reached its depth counts as cut). Each new plunge
-// stops on the floor as any other; posted after the larger tools, it meets
+// stops on the floor as any other; machined after the larger tools, it meets
 // the material they left, and the replay checks its own holder.
 std::vector<CutDisk> reachWhereHeld(const Stages& job, const HolderClearance& held) {
   const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
@@ -754,11 +754,10 @@ std::vector<HolderStop> stillHeld(const Pocket& pocket, const ToolTable& tools,
 }
 
 // What the holders keep clear, in a pocket of this size.
-HolderSettings mountOf(const Stages& job) {
+HolderSettings holderSettingsOf(const Stages& job) {
   return {job.in.motion.holderClearance, dist(job.pocket.region.minCorner(), job.pocket.region.maxCorner())};
 }
 
-// The engagement's and the motion's options: each filled here only, from the job.
 // What the growth and the moves read of the job, filled once for both.
 JobOptions jobOptions(const Stages& job) {
   const auto& [in, tools, pocket, floor, depths, material, progress, regionArea] = job;
@@ -827,9 +826,9 @@ Plan planChoosingTools(const PlanInput& in, const Progress& progress) {
   const std::unique_ptr<FloorSurface> floor = makeFloor(in);
   ToolSetStages stages;
   stages.floor = floor.get();
-  stages.plan = [](PlanInput sub, std::optional<CoverResult> placed, const Progress& p) {
+  stages.plan = [](PlanInput sub, std::optional<CoverResult> positions, const Progress& p) {
     validate(sub);
-    return planPlaced(std::move(sub), std::move(placed), p);
+    return planPlaced(std::move(sub), std::move(positions), p);
   };
   stages.place = [](PlanInput sub, const Progress& p) {
     validate(sub);
@@ -864,17 +863,17 @@ Plan planWithTools(PlanInput in, const Progress& progress) { return planPlaced(s
 
 namespace {
 
-// The plunges in the posted order: each tool's tour, then (real plunge mills)
+// The plunges in their machining order: each tool's tour, then (real plunge mills)
 // engagement limits and cores (positions and order grown together), flute
 // length (levels), holders and shanks kept clear of the part and the
 // standing material, in that order: plunges stop where they clear (holder.hpp).
-struct Posted {
+struct MachiningOrder {
   HolderClearance holders;
   int levels = 1;
 };
 
-// progress: the job's, or the range of a second posting (postReaching).
-Posted post(const Stages& job, const MotionOptions& motion, const std::vector<CutDisk>& disks,
+// progress: the job's, or the range of a second ordering (orderReaching).
+MachiningOrder orderForMachining(const Stages& job, const MotionOptions& motion, const std::vector<CutDisk>& disks,
             const Progress& progress) {
   const auto& [in, tools, pocket, floor, depths, material, jobProgress, regionArea] = job;
   progress.stage(share::kOrder, "ordering the plunges");
@@ -887,19 +886,19 @@ Posted post(const Stages& job, const MotionOptions& motion, const std::vector<Cu
     ordered = growWithinLimits(pocket.region, depths, ordered, stock, eo);
   }
   Levels split = splitIntoLevels(ordered, motion);
-  return {clearHolders(split.plunges, tools, material, mountOf(job)), split.levels};
+  return {clearHolders(split.plunges, tools, material, holderSettingsOf(job)), split.levels};
 }
 
-// Posted, and where holders stopped plunges, the tools they did not stop
-// cover what is left (reachWhereHeld), and all is posted again.
-Posted postReaching(const Stages& job, const MotionOptions& motion, std::vector<CutDisk> disks) {
-  Posted posted = post(job, motion, disks, job.progress);
-  if (posted.holders.stops.empty()) return posted;
+// The machining order, and where holders stopped plunges, the tools they did
+// not stop cover what is left (reachWhereHeld), and all is ordered again.
+MachiningOrder orderReaching(const Stages& job, const MotionOptions& motion, std::vector<CutDisk> disks) {
+  MachiningOrder order = orderForMachining(job, motion, disks, job.progress);
+  if (order.holders.stops.empty()) return order;
   job.progress.stage(share::kReach, "covering where holders stopped plunges");
-  const std::vector<CutDisk> reach = reachWhereHeld(job, posted.holders);
-  if (reach.empty()) return posted;
+  const std::vector<CutDisk> reach = reachWhereHeld(job, order.holders);
+  if (reach.empty()) return order;
   disks.insert(disks.end(), reach.begin(), reach.end());
-  return post(job, motion, disks, job.progress.sub(share::kReach, share::kMotion));
+  return orderForMachining(job, motion, disks, job.progress.sub(share::kReach, share::kMotion));
 }
 
 // What the final plunges cut and the stock they leave on the floor: measured
@@ -959,7 +958,7 @@ Said partStockSaid(const Stages& job, const std::optional<PartStock>& measured) 
   return said;
 }
 
-Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const Progress& progress) {
+Plan planPlaced(const PlanInput& given, std::optional<CoverResult> positions, const Progress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   const Planned planned = pocketOf(given);
   const PlanInput& in = planned.in;
@@ -980,13 +979,13 @@ Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const
   const Stages job{in, tools, pocket, *floor, depths, material, progress, regionArea};
 
   // Where to plunge and how deep, then which plunges are left out in air.
-  const Placed where = placeAndDepth(job, std::move(placed));
+  const Placed where = placeAndDepth(job, std::move(positions));
   const AirSplit air = dropAirPlunges(job, where.disks);
-  // In what order, as posted: levels, holders and the tool that reaches.
+  // In what order they are machined: levels, holders and the tool that reaches.
   MotionOptions motion = motionOptions(job);
-  const Posted posted = postReaching(job, motion, air.cutting);
-  const std::vector<Plunge>& plunges = posted.holders.plunges;
-  const Said held = holderLimits(stillHeld(pocket, tools, posted.holders.stops, plunges), tools,
+  const MachiningOrder order = orderReaching(job, motion, air.cutting);
+  const std::vector<Plunge>& plunges = order.holders.plunges;
+  const Said held = holderLimits(stillHeld(pocket, tools, order.holders.stops, plunges), tools,
                                  in.motion.holderClearance);
   // Measured on the final plunges (the floor-stock step and the limits add to
   // the covering's), the plunges left out in air counted as cut: the material
@@ -1050,7 +1049,7 @@ Plan planPlaced(const PlanInput& given, std::optional<CoverResult> placed, const
   st.volumeBefore = stock.volumeBefore;
   st.airPlunges = static_cast<int>(air.inAir.size());
   st.restMaterial = material.known();
-  st.levels = posted.levels;
+  st.levels = order.levels;
   const MotionStats& m = moves.stats;
   st.overEngaged = m.overEngaged;
   st.thinCuts = m.thinCuts;

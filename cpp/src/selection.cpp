@@ -162,13 +162,13 @@ Stop stopOf(const PlanInput& in, const FloorSurface& floor, Vec2 c, double r) {
     if (!std::isnan(v) && !(v <= s.z)) s.z = v;
   if (std::isnan(s.z)) return s;
   if (in.floor.finalDepth) s.z = std::max(s.z, *in.floor.finalDepth);
-  int rest = 0, n = 0;
+  int overStock = 0, n = 0;  // samples where a floor-stock plunge would be needed
   for (double v : h)
     if (!std::isnan(v)) {
       ++n;
-      rest += s.z - v > in.floor.maxFloorStock && in.floor.maxFloorStock > 0.0;
+      overStock += s.z - v > in.floor.maxFloorStock && in.floor.maxFloorStock > 0.0;
     }
-  s.floorStockShare = static_cast<double>(rest) / n;
+  s.floorStockShare = static_cast<double>(overStock) / n;
   s.z += in.floorAllowance;
   return s;
 }

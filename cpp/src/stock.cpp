@@ -41,7 +41,7 @@ double stockSpacing(double area, double minRadius) {
 StockGrid::StockGrid(const Region& region, const FloorSurface& floor, const StockSampling& sampling,
                      const Progress& progress)
     : spacing_(sampling.spacing) {
-  const auto [radialAllowance, floorAllowance, wallBand, spacing] = sampling;
+  const auto [radialAllowance, floorAllowance, maxWallStock, spacing] = sampling;
   if (!(spacing > 0.0)) throw Error("stock sampling: spacing must be > 0");
   const Vec2 lo = region.minCorner(), hi = region.maxCorner();
   // Samples in the middle of raster cells, so that a pocket's edges fall between them.
@@ -58,14 +58,14 @@ StockGrid::StockGrid(const Region& region, const FloorSurface& floor, const Stoc
       const size_t k = j * nx_ + i;
       const Vec2 p = at(k);
       if (!region.contains(p)) continue;
-      const double w = region.wallDistance(p, radialAllowance + wallBand + spacing);
+      const double w = region.wallDistance(p, radialAllowance + maxWallStock + spacing);
       if (w < radialAllowance) continue;
       const double z = floor.height(p);
       if (!std::isfinite(z)) continue;
       floor_[k] = z + floorAllowance;
       // The floor-stock step also targets one sample step beyond the band: the core's
       // own edge is a thin strip that a raster would otherwise sample only here and there.
-      core_[k] = w >= radialAllowance + wallBand ? 2 : w >= radialAllowance + wallBand - spacing ? 1 : 0;
+      core_[k] = w >= radialAllowance + maxWallStock ? 2 : w >= radialAllowance + maxWallStock - spacing ? 1 : 0;
     }
   }
 }

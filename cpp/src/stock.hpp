@@ -36,13 +36,13 @@ struct CutDisk {
 // Samples of the pocket every `spacing` mm (row-major from `origin`): the
 // floor height (+ floor allowance) and the lowest cut so far. Samples outside
 // the region shrunk by the radial allowance, or without floor, have a NaN floor.
-// Samples farther than allowance + wallBand from the walls are the core: the
+// Samples farther than allowance + maxWallStock from the walls are the core: the
 // floor stock is measured and limited there (nearer, the wall band's material
 // is the finisher's, and a plunge covers it only with its rim).
 struct StockSampling {
   double radialAllowance = 0.0;
   double floorAllowance = 0.0;
-  double wallBand = 0.0;  // max_wall_stock: the band along the walls that is not the core
+  double maxWallStock = 0.0;  // max_wall_stock: the band along the walls that is not the core
   double spacing = 1.0;   // mm between samples (stockSpacing)
 };
 

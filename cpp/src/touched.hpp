@@ -40,7 +40,7 @@ class Touched {
   double highestAlong(Vec2 a, Vec2 b, double r) const;
   // Whether highestAlong(a, b, r) > z, without its polygon test where the
   // disks met already stand higher than z (a plunge deeper than its
-  // neighbours: a rest plunge on a fillet).
+  // neighbours: a floor-stock plunge on a fillet).
   bool standsAbove(Vec2 a, Vec2 b, double r, double z) const;
 
  private:

@@ -5,7 +5,7 @@ selected, fillets included (the default), 12/8/5 mm flat plungers from .fctb
 bits, Max Floor Stock 1 mm, allowances 0.5 mm radial and 0.3 mm floor. Timed
 as users get it: the recompute through the README's install (the module, the
 floor as BREP faces) and through the Linux bundle's program (the floor as a
-mesh), with the plans' plunges, rest plunges and the floor stock they leave.
+mesh), with the plans' plunges, floor-stock plunges and the floor stock they leave.
 
     sh resources/bundle.sh linux
     XDG_DATA_HOME=$(mktemp -d) XDG_CONFIG_HOME=$(mktemp -d) freecadcmd tests/bench/bench_tray.py
@@ -37,7 +37,7 @@ op, tcs = add_plunge_rough(job, floor, diameters=(12, 8, 5), MaxFloorStock=1.0, 
                            FloorAllowance=0.3)
 
 program = bundle_program(ROOT)
-print("| planner | recompute | planning | plunges | rest plunges | floor stock left (max / mean) |")
+print("| planner | recompute | planning | plunges | floor-stock plunges | floor stock left (max / mean) |")
 print("|---|---|---|---|---|---|")
 for name, through_bundle in PLANNERS:
     whole, planning, plan = recompute_timed(doc, op, program if through_bundle else None, REPEAT)

@@ -325,7 +325,7 @@ def test_checker_finds_a_stop_too_low():
 
 # ---------------------------------------------------------------- the planner's stops
 
-# Floor-rest plunges (Max Floor Stock 1 mm) on the smaller fillets; on the
+# Floor-stock plunges (Max Floor Stock 1 mm) on the smaller fillets; on the
 # larger ones the floor-stock step alone plans hundreds of plunges on the fillets
 # (minutes), so these keep the packing's and covering's stops only.
 @pytest.mark.parametrize("radius,kind,floor_stock", [

@@ -128,7 +128,7 @@ def test_sculptured_limited_plans_lead_out_raised_out_of_the_steps(cli, tmp_path
     does; the checker replays each raised lead-out at its height. The tour,
     shortened within the order the growth allows, travels at most 1.5 times
     as far per plunge as the unlimited plan's. The plunges stay within 1.3
-    times the row bound or the unlimited plan (its rest plunges in Z count),
+    times the row bound or the unlimited plan (its floor-stock plunges in Z count),
     and leave no more stock on the floor than the unlimited plan."""
     free, _ = post(cli, json.load(open(os.path.join(EXAMPLES, "sculptured.json"))), tmp_path)
     data = mill(json.load(open(os.path.join(EXAMPLES, "sculptured.json"))), kind)

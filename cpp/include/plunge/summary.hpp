@@ -8,7 +8,7 @@
 namespace plunge {
 
 // Plunges per tool, coverage and travel, then the stock left (wall band, floor stock max/mean,
-// volumes removed and left), rest plunges, start holes, levels, lead-outs and
+// volumes removed and left), floor-stock plunges, start holes, levels, lead-outs and
 // the estimated time.
 // With the automatic tool choice, its outcome (choiceSummary), and last what the
 // depths were found on (floorKindSaid).
