@@ -289,7 +289,7 @@ class ObjectPlungeRough(PathOp.ObjectOp):
             FreeCAD.addDocumentObserver(_PlanAgain(obj))
             return
         except (planner.ABORT, planner.Cancelled, RuntimeError) as e:  # the user aborted (Esc): said, nothing cut
-            if not isinstance(e, planner.Cancelled) and not planner.is_abort(e):
+            if not planner.is_abort(e):
                 raise
             _report(obj, translate("PlungeRough", "planning cancelled: nothing is cut until it plans again "
                                    "(the next recompute)"), error=False)

@@ -16,6 +16,7 @@ once. It is looked for, in this order:
 
 App side: never imports GUI code.
 """
+import contextlib
 import json
 import os
 import platform
@@ -259,20 +260,24 @@ class Module:
         self.floors = info["floors"]
         self.name = "%s, module %s" % (info["planner"], module.__file__)
 
-    def plan(self, data, svg=False, progress=None):
+    @contextlib.contextmanager
+    def _cancels(self):
+        """The module's plunge.Cancelled as the addon's Cancelled, as the program's."""
         try:
-            return self.module.plan(data, svg=svg, progress=progress)
+            yield
         except self.module.Cancelled as e:
             raise Cancelled(str(e)) from None
+
+    def plan(self, data, svg=False, progress=None):
+        with self._cancels():
+            return self.module.plan(data, svg=svg, progress=progress)
 
     def start_hole_tools(self, tools):
         return self.module.start_hole_tools(tools)
 
     def sweep(self, material, tool, moves, progress=None):
-        try:
+        with self._cancels():
             return self.module.sweep(material, tool, moves, progress)
-        except self.module.Cancelled as e:
-            raise Cancelled(str(e)) from None
 
 
 def _executable(path):
@@ -330,10 +335,11 @@ def _cached(argv, where):
 
 
 def is_abort(error):
-    """Whether an exception is the user's abort: FreeCAD's own, or the
-    progress indicator's RuntimeError when it is the outermost one (a
-    recompute with the "can abort" preference off)."""
-    return isinstance(error, ABORT) or (isinstance(error, RuntimeError) and "abort progress indicator" in str(error))
+    """Whether an exception is the user's abort: FreeCAD's own, the progress
+    indicator's RuntimeError when it is the outermost one (a recompute with
+    the "can abort" preference off), or a progress that said no (Cancelled)."""
+    return isinstance(error, (ABORT, Cancelled)) or (isinstance(error, RuntimeError)
+                                                      and "abort progress indicator" in str(error))
 
 
 class PlanProgress:

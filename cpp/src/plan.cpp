@@ -874,7 +874,7 @@ struct MachiningOrder {
 
 // progress: the job's, or the range of a second ordering (orderReaching).
 MachiningOrder orderForMachining(const Stages& job, const MotionOptions& motion, const std::vector<CutDisk>& disks,
-            const Progress& progress) {
+                                 const Progress& progress) {
   const auto& [in, tools, pocket, floor, depths, material, jobProgress, regionArea] = job;
   progress.stage(share::kOrder, "ordering the plunges");
   std::vector<Plunge> ordered = sequence(job, disks);
