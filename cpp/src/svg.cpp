@@ -121,7 +121,7 @@ class SvgPicture {
  private:
   size_t legendLines() const {
     switch (view_) {
-      case SvgView::Plan: return 3 + plan_.stats.perTool.size() + (in_.material ? 1 : 0);
+      case SvgView::Plan: return 4 + plan_.stats.perTool.size() + (in_.material ? 1 : 0);
       case SvgView::Stock: return 3 + std::min<size_t>(plan_.broken.size(), kMaxBrokenLines);
       case SvgView::Heights:
         return 3 + (std::any_of(plan_.plunges.begin(), plan_.plunges.end(), [](const Plunge& p) { return p.holderLimited; }) ? 1 : 0);
@@ -330,8 +330,8 @@ class SvgPicture {
 
   void planLegend() {
     line(0, "The plan: " + std::to_string(plan_.stats.plungeCount) + " plunges, travel " +
-                number(plan_.stats.travelLength) + " mm, about " + number(plan_.stats.estimatedMinutes) + " min, " +
-                floorKindSaid(plan_.stats.floorKind));
+                number(plan_.stats.travelLength) + " mm, about " + number(plan_.stats.estimatedMinutes) + " min");
+    line(0, floorKindSaid(plan_.stats.floorKind));  // a line of its own: on one with the figures it ran off the picture
     for (const ToolCount& t : plan_.stats.perTool) {
       const char* c = kPalette[colour_[t.toolId] % 8];
       s_ << "<circle cx=\"" << lo_.x + fs_ * 0.5 << "\" cy=\"" << y_ + fs_ * 0.6 << "\" r=\"" << fs_ * 0.45

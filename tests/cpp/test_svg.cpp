@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -39,7 +40,43 @@ size_t count(const std::vector<std::string>& elements, const std::string& what) 
   return n;
 }
 
+// Each <text> element's text, its x and its font size.
+struct Text {
+  std::string what;
+  double x = 0.0, size = 0.0;
+};
+std::vector<Text> texts(const std::string& svg) {
+  std::vector<Text> out;
+  for (size_t at = svg.find("<text"); at != std::string::npos; at = svg.find("<text", at + 1)) {
+    Text t;
+    t.x = std::stod(svg.substr(svg.find("x=\"", at) + 3));
+    t.size = std::stod(svg.substr(svg.find("font-size=\"", at) + 11));
+    const size_t from = svg.find('>', at) + 1;
+    t.what = svg.substr(from, svg.find("</text>", from) - from);
+    out.push_back(t);
+  }
+  return out;
+}
+
 }  // namespace
+
+// The legend names what the depths were found on, and each of its lines fits
+// the picture: at 0.45 em a character (less than a sans-serif font's mean
+// width) none runs past the view box's right edge.
+TEST(Svg, PlanLegendSaysTheFloorKindAndFitsThePicture) {
+  PlanInput in = planInputFromJson(test::smallJobJson());
+  in.floor.surface.kind = Floor::Kind::Expression;
+  in.floor.surface.expression = "-10 + sin(x / 9)";
+  const Plan p = plan(in);
+  const std::string svg = planToSvg(in, p, SvgView::Plan);
+  const size_t box = svg.find("viewBox=\"") + 9;
+  std::istringstream view(svg.substr(box, svg.find('"', box) - box));
+  double vx = 0, vy = 0, vw = 0, vh = 0;
+  view >> vx >> vy >> vw >> vh;
+  const std::vector<Text> lines = texts(svg);
+  EXPECT_EQ(std::count_if(lines.begin(), lines.end(), [](const Text& t) { return t.what == "depths on the floor's expression"; }), 1);
+  for (const Text& t : lines) EXPECT_LE(t.x + 0.45 * t.size * t.what.size(), vx + vw) << t.what;
+}
 
 TEST(Svg, PlanViewDrawsEveryPlungeItsToursAndALegend) {
   PlanInput in = planInputFromJson(test::smallJobJson());
